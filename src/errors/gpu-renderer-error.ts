@@ -1,0 +1,34 @@
+/**
+ * Typed errors raised at the public boundary. Every error names a machine-readable `code` and, when
+ * the fault lies in caller input, the offending `field` (a dotted path such as
+ * `meshes[2].positions[7]`), so callers can react without parsing messages.
+ */
+export type GpuRendererErrorCode =
+  | 'INVALID_OPTION'
+  | 'INVALID_MESH'
+  | 'INVALID_SCENE_OBJECT'
+  | 'INVALID_SCENE_FILE'
+  | 'SCENE_TOO_LARGE'
+  | 'WEBGPU_UNAVAILABLE'
+  | 'DEVICE_LOST'
+  | 'RENDERER_DESTROYED'
+  | 'SHADER_COMPILATION_FAILED'
+  | 'GPU_VALIDATION_FAILED'
+  | 'INVALID_CANVAS'
+  | 'INVALID_STATE';
+
+export class GpuRendererError extends Error {
+  readonly code: GpuRendererErrorCode;
+  readonly field: string | undefined;
+
+  constructor(code: GpuRendererErrorCode, message: string, options: { field?: string; cause?: unknown } = {}) {
+    super(options.field ? `${options.field}: ${message}` : message, options.cause === undefined ? undefined : { cause: options.cause });
+    this.name = 'GpuRendererError';
+    this.code = code;
+    this.field = options.field;
+  }
+}
+
+export function isGpuRendererError(value: unknown): value is GpuRendererError {
+  return value instanceof GpuRendererError;
+}

@@ -1,0 +1,1 @@
+export { GpuRendererError, isGpuRendererError, type GpuRendererErrorCode } from './gpu-renderer-error.ts';

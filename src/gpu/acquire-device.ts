@@ -1,0 +1,90 @@
+import { GpuRendererError } from '../errors/gpu-renderer-error.ts';
+
+export interface AcquireGpuDeviceOptions {
+  /** Share an existing device instead of creating one. */
+  device?: GPUDevice;
+  powerPreference?: GPUPowerPreference;
+  /** Features to enable when present on the adapter (missing ones are skipped, not errors). */
+  optionalFeatures?: readonly GPUFeatureName[];
+}
+
+export interface AcquiredGpuDevice {
+  device: GPUDevice;
+  /** True when this library created the device and must destroy it. */
+  ownsDevice: boolean;
+  adapterDescription: string;
+  timestampQueries: boolean;
+}
+
+let nodeGpu: Promise<GPU | undefined> | undefined;
+
+/**
+ * The platform's `GPU` object: `navigator.gpu` in browsers and workers; in Node.js, Dawn through
+ * the `webgpu` package (imported lazily so browser bundles never touch it).
+ */
+export function getGpu(): Promise<GPU | undefined> {
+  const nav = (globalThis as { navigator?: { gpu?: GPU } }).navigator;
+  if (nav?.gpu) return Promise.resolve(nav.gpu);
+  const isNode = typeof process !== 'undefined' && typeof process.versions?.node === 'string';
+  if (!isNode) return Promise.resolve(undefined);
+  nodeGpu ??= loadDawn();
+  return nodeGpu;
+}
+
+async function loadDawn(): Promise<GPU | undefined> {
+  // A variable specifier keeps bundlers from trying to resolve the Node-only package.
+  const specifier = 'webgpu';
+  try {
+    const dawn = (await import(specifier)) as { create: (flags: string[]) => GPU; globals: Record<string, unknown> };
+    for (const [key, value] of Object.entries(dawn.globals)) {
+      if (!(key in globalThis)) (globalThis as Record<string, unknown>)[key] = value;
+    }
+    return dawn.create([]);
+  } catch {
+    return undefined;
+  }
+}
+
+export function describeAdapter(adapter: GPUAdapter): string {
+  const info = adapter.info as Partial<GPUAdapterInfo> | undefined;
+  const parts = [info?.vendor, info?.architecture, info?.device, info?.description].filter(
+    (p): p is string => typeof p === 'string' && p.length > 0,
+  );
+  return parts.length > 0 ? [...new Set(parts)].join(' / ') : 'unknown adapter';
+}
+
+export async function acquireGpuDevice(options: AcquireGpuDeviceOptions = {}): Promise<AcquiredGpuDevice> {
+  if (options.device) {
+    const device = options.device;
+    return {
+      device,
+      ownsDevice: false,
+      adapterDescription: device.adapterInfo ? describeAdapterInfo(device.adapterInfo) : 'shared device',
+      timestampQueries: device.features.has('timestamp-query'),
+    };
+  }
+  const gpu = await getGpu();
+  if (!gpu) throw new GpuRendererError('WEBGPU_UNAVAILABLE', 'WebGPU is not available in this environment (no navigator.gpu and no Dawn).');
+  const adapter = await gpu.requestAdapter(options.powerPreference ? { powerPreference: options.powerPreference } : undefined);
+  if (!adapter) throw new GpuRendererError('WEBGPU_UNAVAILABLE', 'No WebGPU adapter is available.');
+  const wanted = options.optionalFeatures ?? ['timestamp-query'];
+  const requiredFeatures = wanted.filter((f) => adapter.features.has(f));
+  // Ask for the adapter's own storage limits: scenes are bounded by what the device really offers.
+  const requiredLimits: Record<string, number> = {
+    maxStorageBufferBindingSize: adapter.limits.maxStorageBufferBindingSize,
+    maxBufferSize: adapter.limits.maxBufferSize,
+    maxStorageBuffersPerShaderStage: Math.min(adapter.limits.maxStorageBuffersPerShaderStage, 10),
+  };
+  const device = await adapter.requestDevice({ requiredFeatures, requiredLimits });
+  return {
+    device,
+    ownsDevice: true,
+    adapterDescription: describeAdapter(adapter),
+    timestampQueries: device.features.has('timestamp-query'),
+  };
+}
+
+function describeAdapterInfo(info: GPUAdapterInfo): string {
+  const parts = [info.vendor, info.architecture, info.device, info.description].filter((p) => typeof p === 'string' && p.length > 0);
+  return parts.length > 0 ? [...new Set(parts)].join(' / ') : 'shared device';
+}

@@ -1,0 +1,13 @@
+// Public facade of @plasius/gpu-renderer: one re-export per subsystem.
+export * from './errors/index.ts';
+export * from './gpu/index.ts';
+export * from './gpu-layout/index.ts';
+export * from './scene/index.ts';
+export * from './accel/index.ts';
+export * from './lighting/index.ts';
+export * from './pathtracer/index.ts';
+export * from './post/index.ts';
+export * from './runtime/index.ts';
+export * from './planning/index.ts';
+export * from './transport/index.ts';
+export * from './xr/index.ts';
