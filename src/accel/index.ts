@@ -1,1 +1,14 @@
-export {};
+export { buildBvh, buildBvhAsync, BVH_MAX_DEPTH, BVH_NODE_BYTES } from './bvh-builder.ts';
+export type { BvhBuildResult, BvhBuildOptions, BvhAsyncBuildOptions } from './bvh-builder.ts';
+export { computeSahCost, computeThreeMeshBvhSahCost } from './bvh-sah.ts';
+export type { SahCostOptions } from './bvh-sah.ts';
+export { packWavefrontTriangles, packWavefrontBvhNodes } from './triangle-packing.ts';
+export type { TriangleMeta } from './triangle-packing.ts';
+export {
+  traceClosestReference,
+  traceAnyReference,
+  bruteForceClosest,
+  bruteForceAny,
+  intersectPackedTriangle,
+} from './bvh-reference-traversal.ts';
+export type { ReferenceRay, ReferenceHit, ReferenceScene } from './bvh-reference-traversal.ts';

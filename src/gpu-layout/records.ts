@@ -54,6 +54,8 @@ export const triangleAttributesLayout: StructLayout = defineStructLayout('Triang
   ['uv0', 'vec2f'],
   ['uv1', 'vec2f'],
   ['uv2', 'vec2f'],
+  ['geometricNormal', 'u32', 'unit cross(e1, e2), octahedral snorm16x2 (front face = CCW winding)'],
+  ['materialId', 'u32'],
 ]);
 
 /** Flattened BVH node: interior nodes keep both children adjacent at leftOrFirst, leftOrFirst + 1. */
@@ -92,7 +94,7 @@ export const lightEntryLayout: StructLayout = defineStructLayout('LightEntry', 1
   ['e1', 'vec3f'],
   ['aliasIndex', 'u32'],
   ['e2', 'vec3f'],
-  ['triangle', 'u32', 'index into triangles/triangleAttributes'],
+  ['triangle', 'u32', 'index into triangles/triangleAttributes; bit 31 = LIGHT_FLAG_DOUBLE_SIDED'],
   ['emission', 'vec3f', 'emitted radiance of the front face'],
   ['pmf', 'f32', 'probability of choosing this light'],
 ]);
@@ -139,6 +141,13 @@ export const bounceUniformsLayout: StructLayout = defineStructLayout('BounceUnif
   ['outBase', 'u32', 'first path index of the output queue'],
 ]);
 
+/** Display resolve constants. */
+export const resolveUniformsLayout: StructLayout = defineStructLayout('ResolveUniforms', 1, [
+  ['imageSize', 'vec2u'],
+  ['toneMapping', 'u32', 'TONE_MAPPING_* of tonemap.wgsl'],
+  ['exposure', 'f32'],
+]);
+
 /**
  * Slots of the u32 counter buffer (atomics in WGSL). Queue lengths first, then per-render statistics.
  */
@@ -177,6 +186,7 @@ export const MATERIAL_FLAG_DOUBLE_SIDED = 1;
 export const TRIANGLE_FLAG_HAS_NORMALS = 1;
 export const TRIANGLE_FLAG_HAS_UVS = 2;
 export const PATH_FLAG_SPECULAR_BOUNCE = 1;
+export const LIGHT_FLAG_DOUBLE_SIDED = 0x80000000;
 
 /** Every record layout, by WGSL struct name. */
 export const wavefrontRecordLayouts = {
@@ -191,6 +201,7 @@ export const wavefrontRecordLayouts = {
   FrameUniforms: frameUniformsLayout,
   WaveUniforms: waveUniformsLayout,
   BounceUniforms: bounceUniformsLayout,
+  ResolveUniforms: resolveUniformsLayout,
 } as const;
 
 /** GPU record sizes in bytes (the mirrored package's "GPU record-size constants"). */

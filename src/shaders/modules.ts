@@ -34,15 +34,16 @@ const optionalModuleRequires: Record<string, readonly string[]> = {
   microfacet: ['math'],
   'bsdf-gltf': ['records', 'math', 'fresnel', 'microfacet'],
   lights: ['records', 'math', 'bind-scene'],
-  camera: ['records', 'math', 'sampling'],
+  camera: ['records', 'math', 'sampling', 'bind-scene', 'bind-wavefront'],
   tonemap: ['math'],
   'kernel-camera': ['bind-scene', 'bind-wavefront', 'camera', 'sampling'],
   'kernel-prepare': ['bind-wavefront'],
   'kernel-extend': ['bind-wavefront', 'bvh-traversal'],
-  'kernel-shade': ['bind-wavefront', 'bind-scene', 'sampling', 'bsdf-gltf', 'lights'],
+  'kernel-shade': ['bind-wavefront', 'bind-scene', 'sampling', 'camera', 'bsdf-gltf', 'lights'],
   'kernel-shadow': ['bind-wavefront', 'bvh-traversal'],
-  'kernel-accumulate': ['bind-wavefront'],
+  'kernel-accumulate': ['bind-scene', 'bind-wavefront'],
   'kernel-resolve': ['records', 'tonemap'],
+  'kernel-present': ['records', 'tonemap'],
 };
 const optionalModuleNames = Object.keys(optionalModuleRequires);
 

@@ -15,6 +15,7 @@ export function createRecordsWgsl(): string {
     TRIANGLE_FLAG_HAS_NORMALS: records.TRIANGLE_FLAG_HAS_NORMALS,
     TRIANGLE_FLAG_HAS_UVS: records.TRIANGLE_FLAG_HAS_UVS,
     PATH_FLAG_SPECULAR_BOUNCE: records.PATH_FLAG_SPECULAR_BOUNCE,
+    LIGHT_FLAG_DOUBLE_SIDED: records.LIGHT_FLAG_DOUBLE_SIDED,
     QUEUE_COUNTER_COUNT: records.queueCounterCount,
     WORKGROUP_SIZE: records.rendererWavefrontComputeWorkgroupSize,
   };

@@ -1,0 +1,41 @@
+// Builds the package: dist/esm (ES modules + .d.ts) and dist/cjs (CommonJS + .d.ts) with
+// TypeScript 7, then makes the CLI executable. Run through `npm run build` (which regenerates the
+// embedded WGSL first).
+import { spawnSync } from 'node:child_process';
+import { chmodSync, existsSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
+import { join } from 'node:path';
+import { fileURLToPath } from 'node:url';
+
+const root = fileURLToPath(new URL('..', import.meta.url));
+const dist = join(root, 'dist');
+const tsc = join(root, 'node_modules/typescript-7/bin/tsc');
+
+function compile(project: string): void {
+  const started = performance.now();
+  const result = spawnSync(process.execPath, [tsc, '-p', project], { cwd: root, stdio: 'inherit' });
+  if (result.status !== 0) {
+    console.error(`build: tsc -p ${project} failed (exit ${result.status ?? result.signal})`);
+    process.exit(1);
+  }
+  console.log(`build: ${project} (${((performance.now() - started) / 1000).toFixed(1)}s)`);
+}
+
+rmSync(dist, { recursive: true, force: true });
+compile('tsconfig.build.json');
+compile('tsconfig.cjs.json');
+
+// The root package.json says "type": "module"; this marks dist/cjs/**/*.js as CommonJS.
+writeFileSync(join(dist, 'cjs/package.json'), `${JSON.stringify({ type: 'commonjs' }, null, 2)}\n`);
+
+// The package "bin": an ES module with a shebang, executable.
+const cli = join(dist, 'esm/cli/main.js');
+if (!existsSync(cli)) {
+  console.error(`build: ${cli} was not emitted`);
+  process.exit(1);
+}
+const shebang = '#!/usr/bin/env node';
+const text = readFileSync(cli, 'utf8');
+if (!text.startsWith(shebang)) writeFileSync(cli, `${shebang}\n${text}`);
+chmodSync(cli, 0o755);
+
+console.log('build: dist/esm, dist/cjs, dist/esm/cli/main.js (executable)');

@@ -1,0 +1,157 @@
+/** Command-line parsing for `gpu-renderer`, kept free of I/O so it is testable in isolation. */
+import { GpuRendererError } from '../errors/gpu-renderer-error.ts';
+import type { WavefrontToneMapping } from '../scene/types.ts';
+
+export interface RenderCommand {
+  kind: 'render';
+  /** Scene JSON file; undefined renders the built-in Cornell box. */
+  scenePath: string | undefined;
+  width: number;
+  height: number;
+  /** Target samples per pixel. */
+  spp: number;
+  /** Samples per pixel per renderFrame call (progress granularity). */
+  sppPerFrame: number;
+  maxDepth: number;
+  seed: number;
+  toneMapping: WavefrontToneMapping;
+  exposure: number;
+  out: string;
+}
+
+export interface HelpCommand {
+  kind: 'help';
+  text: string;
+}
+
+export type CliCommand = RenderCommand | HelpCommand;
+
+export const renderDefaults = {
+  width: 512,
+  height: 512,
+  spp: 64,
+  sppPerFrame: 4,
+  maxDepth: 8,
+  seed: 0,
+  toneMapping: 'neutral',
+  exposure: 1,
+  out: 'render.png',
+} as const satisfies Omit<RenderCommand, 'kind' | 'scenePath'>;
+
+export const usage = `Usage: gpu-renderer render [scene.json] [options]
+
+Renders a scene with the WebGPU wavefront path tracer and writes a PNG.
+Without a scene file it renders the built-in Cornell box.
+
+Options:
+  --width <px>             image width (default ${renderDefaults.width})
+  --height <px>            image height (default ${renderDefaults.height})
+  --spp <n>                samples per pixel (default ${renderDefaults.spp})
+  --spp-per-frame <n>      samples per pixel per GPU frame (default ${renderDefaults.sppPerFrame})
+  --max-depth <n>          scattering events per path, 1..32 (default ${renderDefaults.maxDepth})
+  --seed <n>               sampler seed, 0..4294967295 (default ${renderDefaults.seed})
+  --tone-mapping <mode>    neutral | aces | linear (default ${renderDefaults.toneMapping})
+  --exposure <x>           radiance multiplier before tone mapping (default ${renderDefaults.exposure})
+  --out <file.png>         output image (default ${renderDefaults.out})
+  -h, --help               show this help
+`;
+
+function invalid(field: string, message: string): never {
+  throw new GpuRendererError('INVALID_OPTION', message, { field });
+}
+
+function integer(flag: string, text: string, min: number, max: number): number {
+  if (!/^[+]?\d+$/.test(text)) invalid(flag, `expected an integer, got ${JSON.stringify(text)}`);
+  const n = Number(text);
+  if (n < min || n > max) invalid(flag, `must be between ${min} and ${max}, got ${n}`);
+  return n;
+}
+
+function positiveNumber(flag: string, text: string): number {
+  const n = text.trim() === '' ? Number.NaN : Number(text);
+  if (!Number.isFinite(n) || n <= 0) invalid(flag, `expected a finite number > 0, got ${JSON.stringify(text)}`);
+  return n;
+}
+
+/** Parses the arguments after `render` (e.g. `['scene.json', '--spp', '16']`). */
+export function parseRenderArgs(argv: readonly string[]): RenderCommand | HelpCommand {
+  const command: RenderCommand = { kind: 'render', scenePath: undefined, ...renderDefaults };
+  let sppPerFrameGiven = false;
+  for (let i = 0; i < argv.length; i++) {
+    const arg = argv[i];
+    if (arg === '-h' || arg === '--help') return { kind: 'help', text: usage };
+    if (!arg.startsWith('-') || arg === '-') {
+      if (command.scenePath !== undefined) invalid('scene', `only one scene file may be given (got ${JSON.stringify(command.scenePath)} and ${JSON.stringify(arg)})`);
+      command.scenePath = arg;
+      continue;
+    }
+    if (arg === '--') {
+      // Everything after `--` is positional.
+      for (const rest of argv.slice(i + 1)) {
+        if (command.scenePath !== undefined) invalid('scene', `only one scene file may be given (got ${JSON.stringify(command.scenePath)} and ${JSON.stringify(rest)})`);
+        command.scenePath = rest;
+      }
+      break;
+    }
+    const eq = arg.indexOf('=');
+    const flag = eq >= 0 ? arg.slice(0, eq) : arg;
+    let value: string | undefined = eq >= 0 ? arg.slice(eq + 1) : undefined;
+    const take = (): string => {
+      if (value === undefined) {
+        const next = argv[i + 1];
+        if (next === undefined || (next.startsWith('--') && next.length > 2)) invalid(flag, 'expects a value');
+        i++;
+        value = next;
+      }
+      return value;
+    };
+    switch (flag) {
+      case '--width':
+        command.width = integer(flag, take(), 1, 16384);
+        break;
+      case '--height':
+        command.height = integer(flag, take(), 1, 16384);
+        break;
+      case '--spp':
+        command.spp = integer(flag, take(), 1, 1 << 20);
+        break;
+      case '--spp-per-frame':
+        command.sppPerFrame = integer(flag, take(), 1, 1024);
+        sppPerFrameGiven = true;
+        break;
+      case '--max-depth':
+        command.maxDepth = integer(flag, take(), 1, 32);
+        break;
+      case '--seed':
+        command.seed = integer(flag, take(), 0, 0xffffffff);
+        break;
+      case '--tone-mapping': {
+        const mode = take();
+        if (mode !== 'neutral' && mode !== 'aces' && mode !== 'linear') invalid(flag, `expected neutral, aces or linear, got ${JSON.stringify(mode)}`);
+        command.toneMapping = mode;
+        break;
+      }
+      case '--exposure':
+        command.exposure = positiveNumber(flag, take());
+        break;
+      case '--out': {
+        const out = take();
+        if (out === '') invalid(flag, 'expects a file name');
+        command.out = out;
+        break;
+      }
+      default:
+        invalid(flag, `unknown option (see --help)`);
+    }
+  }
+  if (!sppPerFrameGiven) command.sppPerFrame = Math.min(command.sppPerFrame, command.spp);
+  return command;
+}
+
+/** Parses the whole argument list after the executable (`['render', ...]`). */
+export function parseCliArgs(argv: readonly string[]): CliCommand {
+  const [sub, ...rest] = argv;
+  if (sub === undefined || sub === '-h' || sub === '--help' || sub === 'help') return { kind: 'help', text: usage };
+  if (sub !== 'render') invalid('command', `unknown command ${JSON.stringify(sub)} (expected "render")`);
+  return parseRenderArgs(rest);
+}

@@ -1,0 +1,78 @@
+/** The `render` command: load a scene, path trace it in small increments with progress, write a PNG. */
+import { readFile } from 'node:fs/promises';
+import { createWavefrontPathTracingComputeRenderer } from '../pathtracer/index.ts';
+import type { WavefrontPathTracingRenderer } from '../pathtracer/types.ts';
+import { GpuRendererError } from '../errors/gpu-renderer-error.ts';
+import { createCornellBoxScene } from '../scene/cornell-box.ts';
+import { parseSceneFile } from '../scene/scene-file.ts';
+import type { WavefrontSceneDescription } from '../scene/types.ts';
+import { writePng } from '../post/png-node.ts';
+import { createProgressBar, type ProgressStream } from './progress.ts';
+import type { RenderSummary } from './render-format.ts';
+import type { RenderCommand } from './args.ts';
+
+export type { RenderSummary } from './render-format.ts';
+
+export async function loadScene(scenePath: string | undefined): Promise<WavefrontSceneDescription> {
+  if (scenePath === undefined) return createCornellBoxScene();
+  let text: string;
+  try {
+    text = await readFile(scenePath, 'utf8');
+  } catch (error) {
+    throw new GpuRendererError('INVALID_SCENE_FILE', `cannot read ${scenePath}: ${(error as Error).message}`, { field: 'scene', cause: error });
+  }
+  return parseSceneFile(text, scenePath);
+}
+
+export async function runRenderCommand(command: RenderCommand, io: { stderr: ProgressStream } = { stderr: process.stderr }): Promise<RenderSummary> {
+  const t0 = performance.now();
+  const scene = await loadScene(command.scenePath);
+  const renderer: WavefrontPathTracingRenderer = await createWavefrontPathTracingComputeRenderer({
+    width: command.width,
+    height: command.height,
+    maxDepth: command.maxDepth,
+    samplesPerPixel: command.sppPerFrame,
+    seed: command.seed,
+    toneMapping: command.toneMapping,
+    exposure: command.exposure,
+    ...scene,
+  });
+  try {
+    const progress = createProgressBar(io.stderr);
+    let accumulated = 0;
+    let rays = 0;
+    let invalidSamples = 0;
+    let renderMs = 0;
+    progress.update(0, command.spp);
+    while (accumulated < command.spp) {
+      const spp = Math.min(command.sppPerFrame, command.spp - accumulated);
+      const start = performance.now();
+      const stats = await renderer.renderFrame({ samplesPerPixel: spp });
+      renderMs += performance.now() - start;
+      accumulated = stats.samplesAccumulated;
+      rays += stats.rays.total;
+      invalidSamples += stats.invalidSamples;
+      progress.update(accumulated, command.spp);
+      if (stats.samplesAdded <= 0) throw new GpuRendererError('INVALID_STATE', 'renderFrame added no samples');
+    }
+    progress.finish();
+    const pixels = await renderer.readPixels();
+    await writePng(command.out, pixels);
+    const renderSeconds = renderMs / 1000;
+    return {
+      width: command.width,
+      height: command.height,
+      samplesPerPixel: accumulated,
+      renderSeconds,
+      totalSeconds: (performance.now() - t0) / 1000,
+      samplesPerSecond: (command.width * command.height * accumulated) / renderSeconds,
+      rays,
+      raysPerSecond: rays / renderSeconds,
+      invalidSamples,
+      adapter: renderer.getSnapshot().adapter,
+      out: command.out,
+    };
+  } finally {
+    renderer.destroy();
+  }
+}

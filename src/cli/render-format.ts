@@ -1,0 +1,41 @@
+/** The render command's closing summary (separate from the renderer so it is testable without a GPU). */
+import { formatDuration } from './progress.ts';
+
+export interface RenderSummary {
+  width: number;
+  height: number;
+  samplesPerPixel: number;
+  /** Seconds spent in renderFrame calls (excludes setup and the PNG write). */
+  renderSeconds: number;
+  /** Seconds from start to the written PNG. */
+  totalSeconds: number;
+  /** width * height * spp / renderSeconds. */
+  samplesPerSecond: number;
+  rays: number;
+  raysPerSecond: number;
+  invalidSamples: number;
+  adapter: string;
+  out: string;
+}
+
+/** Engineering notation: 1234567 -> "1.23 M". */
+export function formatRate(value: number): string {
+  if (!Number.isFinite(value)) return '?';
+  const units = ['', ' k', ' M', ' G', ' T'];
+  let v = value;
+  let u = 0;
+  while (Math.abs(v) >= 1000 && u < units.length - 1) {
+    v /= 1000;
+    u++;
+  }
+  return `${v.toPrecision(3)}${units[u]}`;
+}
+
+export function formatSummary(s: RenderSummary): string {
+  return [
+    `wrote ${s.out} (${s.width}x${s.height}, ${s.samplesPerPixel} spp)`,
+    `  ${formatRate(s.samplesPerSecond)}samples/s, ${formatRate(s.raysPerSecond)}rays/s (${formatRate(s.rays)}rays), ` +
+      `${formatDuration(s.renderSeconds)} rendering, ${formatDuration(s.totalSeconds)} total`,
+    `  adapter: ${s.adapter}${s.invalidSamples > 0 ? `; ${s.invalidSamples} invalid samples dropped` : ''}`,
+  ].join('\n');
+}

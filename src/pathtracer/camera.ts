@@ -1,0 +1,43 @@
+import { fail, requireNumberInRange, requireVec } from '../errors/validate.ts';
+import type { WavefrontCameraInput } from '../scene/types.ts';
+
+export type Vec3 = [number, number, number];
+
+/** A validated pinhole camera with its orthonormal basis (right-handed, looking down `forward`). */
+export interface WavefrontCamera {
+  position: Vec3;
+  target: Vec3;
+  up: Vec3;
+  fovYDegrees: number;
+  forward: Vec3;
+  right: Vec3;
+  /** Up, orthogonalised against forward. */
+  trueUp: Vec3;
+  tanHalfFovY: number;
+}
+
+export const defaultWavefrontCamera: WavefrontCameraInput = { position: [0, 0, 3.9], target: [0, 0, 0], up: [0, 1, 0], fovYDegrees: 39.3 };
+
+const sub = (a: Vec3, b: Vec3): Vec3 => [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
+const cross = (a: Vec3, b: Vec3): Vec3 => [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
+const length = (a: Vec3): number => Math.hypot(a[0], a[1], a[2]);
+const scale = (a: Vec3, s: number): Vec3 => [a[0] * s, a[1] * s, a[2] * s];
+
+export function normalizeWavefrontCamera(input: WavefrontCameraInput | undefined, field = 'camera'): WavefrontCamera {
+  const c = input ?? defaultWavefrontCamera;
+  if (typeof c !== 'object' || c === null) fail('INVALID_OPTION', field, 'expected a camera object');
+  const position = requireVec(c.position, 3, `${field}.position`) as Vec3;
+  const target = requireVec(c.target, 3, `${field}.target`) as Vec3;
+  const up = (c.up === undefined ? [0, 1, 0] : requireVec(c.up, 3, `${field}.up`)) as Vec3;
+  const fovYDegrees = c.fovYDegrees === undefined ? 45 : requireNumberInRange(c.fovYDegrees, `${field}.fovYDegrees`, { min: 1e-3, max: 179 });
+  const toTarget = sub(target, position);
+  const dist = length(toTarget);
+  if (!(dist > 0)) fail('INVALID_OPTION', `${field}.target`, 'target must differ from position');
+  const forward = scale(toTarget, 1 / dist);
+  const r = cross(forward, up);
+  const rl = length(r);
+  if (!(rl > 1e-9 * Math.max(1, length(up)))) fail('INVALID_OPTION', `${field}.up`, 'up must not be parallel to the view direction');
+  const right = scale(r, 1 / rl);
+  const trueUp = cross(right, forward);
+  return { position, target, up, fovYDegrees, forward, right, trueUp, tanHalfFovY: Math.tan((fovYDegrees * Math.PI) / 360) };
+}

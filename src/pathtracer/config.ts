@@ -1,0 +1,47 @@
+import { fail, requireInteger, requireNumberInRange, requireVec } from '../errors/validate.ts';
+import type { WavefrontToneMapping } from '../scene/types.ts';
+import { normalizeWavefrontCamera, type WavefrontCamera } from './camera.ts';
+import type { WavefrontPathTracingOptions } from './types.ts';
+
+export const maxWavefrontDepth = 32;
+export const maxWavefrontImageSize = 16384;
+
+/** Validated renderer settings (everything but the scene geometry). */
+export interface WavefrontPathTracingComputeConfig {
+  width: number;
+  height: number;
+  maxDepth: number;
+  samplesPerPixel: number;
+  tileSize: number;
+  seed: number;
+  camera: WavefrontCamera;
+  /** Uniform environment radiance; black when omitted. */
+  environment: [number, number, number];
+  toneMapping: WavefrontToneMapping;
+  exposure: number;
+}
+
+const toneMappings: readonly WavefrontToneMapping[] = ['neutral', 'aces', 'linear'];
+
+/** Validates the non-geometry options; every error names its field. */
+export function createWavefrontPathTracingComputeConfig(options: Partial<WavefrontPathTracingOptions>): WavefrontPathTracingComputeConfig {
+  if (typeof options !== 'object' || options === null) fail('INVALID_OPTION', 'options', 'expected an options object');
+  const width = requireInteger(options.width, 'width', { min: 1, max: maxWavefrontImageSize });
+  const height = requireInteger(options.height, 'height', { min: 1, max: maxWavefrontImageSize });
+  const maxDepth = options.maxDepth === undefined ? 8 : requireInteger(options.maxDepth, 'maxDepth', { min: 1, max: maxWavefrontDepth });
+  const samplesPerPixel = options.samplesPerPixel === undefined ? 1 : requireInteger(options.samplesPerPixel, 'samplesPerPixel', { min: 1, max: 65536 });
+  const tileSize = options.tileSize === undefined ? 256 : requireInteger(options.tileSize, 'tileSize', { min: 8, max: 1024 });
+  const seed = options.seed === undefined ? 0 : requireInteger(options.seed, 'seed', { min: 0, max: 0xffffffff });
+  const camera = normalizeWavefrontCamera(options.camera);
+  let environment: [number, number, number] = [0, 0, 0];
+  if (options.environment !== undefined) {
+    if (typeof options.environment !== 'object' || options.environment === null) fail('INVALID_OPTION', 'environment', 'expected { color: [r, g, b] }');
+    const c = requireVec(options.environment.color, 3, 'environment.color');
+    c.forEach((v, i) => requireNumberInRange(v, `environment.color[${i}]`, { min: 0 }));
+    environment = [c[0]!, c[1]!, c[2]!];
+  }
+  const toneMapping = options.toneMapping ?? 'neutral';
+  if (!toneMappings.includes(toneMapping)) fail('INVALID_OPTION', 'toneMapping', `expected one of ${toneMappings.join(', ')}`);
+  const exposure = options.exposure === undefined ? 1 : requireNumberInRange(options.exposure, 'exposure', { min: 0 });
+  return { width, height, maxDepth, samplesPerPixel, tileSize, seed, camera, environment, toneMapping, exposure };
+}

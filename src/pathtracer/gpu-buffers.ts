@@ -1,0 +1,46 @@
+import { BufferUsage } from '../gpu/webgpu-constants.ts';
+
+/** Tracks the buffers a renderer owns so memory is reported and everything is released once. */
+export class GpuBufferSet {
+  readonly device: GPUDevice;
+  private readonly buffers: { buffer: GPUBuffer; category: 'scene' | 'queue' | 'frame' }[] = [];
+
+  constructor(device: GPUDevice) {
+    this.device = device;
+  }
+
+  create(label: string, size: number, usage: number, category: 'scene' | 'queue' | 'frame'): GPUBuffer {
+    const buffer = this.device.createBuffer({ label, size: Math.max(16, Math.ceil(size / 4) * 4), usage });
+    this.buffers.push({ buffer, category });
+    return buffer;
+  }
+
+  upload(label: string, data: ArrayBuffer, usage: number, category: 'scene' | 'queue' | 'frame'): GPUBuffer {
+    const buffer = this.create(label, data.byteLength, usage | BufferUsage.COPY_DST, category);
+    this.device.queue.writeBuffer(buffer, 0, data);
+    return buffer;
+  }
+
+  bytes(category: 'scene' | 'queue' | 'frame'): number {
+    return this.buffers.filter((b) => b.category === category).reduce((n, b) => n + b.buffer.size, 0);
+  }
+
+  destroy(): void {
+    for (const { buffer } of this.buffers) buffer.destroy();
+    this.buffers.length = 0;
+  }
+}
+
+/** Copies `size` bytes of `source` into a fresh mappable buffer and returns them. */
+export async function readGpuBuffer(device: GPUDevice, source: GPUBuffer, size: number): Promise<ArrayBuffer> {
+  const staging = device.createBuffer({ size, usage: BufferUsage.MAP_READ | BufferUsage.COPY_DST });
+  try {
+    const encoder = device.createCommandEncoder();
+    encoder.copyBufferToBuffer(source, 0, staging, 0, size);
+    device.queue.submit([encoder.finish()]);
+    await staging.mapAsync(0x0001);
+    return staging.getMappedRange().slice(0);
+  } finally {
+    staging.destroy();
+  }
+}

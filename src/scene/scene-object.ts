@@ -1,0 +1,65 @@
+import { fail, requireNumberInRange, requireVec } from '../errors/validate.ts';
+import { allocateStructArray, writeStruct } from '../gpu-layout/struct-layout.ts';
+import { SCENE_OBJECT_BOX, SCENE_OBJECT_SPHERE, sceneObjectLayout } from '../gpu-layout/records.ts';
+import type { NormalizedMaterial } from './material.ts';
+import type { WavefrontSceneObjectInput } from './types.ts';
+
+/** An analytic debug fixture: a sphere or an axis-aligned box with its own material. */
+export interface NormalizedSceneObject {
+  type: 'sphere' | 'box';
+  /** Sphere centre or box minimum. */
+  a: [number, number, number];
+  /** [radius, 0, 0] for spheres, box maximum for boxes. */
+  b: [number, number, number];
+  material: NormalizedMaterial;
+}
+
+export function normalizeWavefrontSceneObject(input: WavefrontSceneObjectInput, index = 0): NormalizedSceneObject {
+  const field = `sceneObjects[${index}]`;
+  if (typeof input !== 'object' || input === null) fail('INVALID_SCENE_OBJECT', field, 'expected an object');
+  const code = 'INVALID_SCENE_OBJECT';
+  const colorIn = input.color === undefined ? [0.8, 0.8, 0.8] : requireVec(input.color, 3, `${field}.color`, code);
+  colorIn.forEach((c, i) => requireNumberInRange(c, `${field}.color[${i}]`, { min: 0 }, code));
+  let emission: [number, number, number] = [0, 0, 0];
+  if (input.emission !== undefined) {
+    const e = requireVec(input.emission, 4, `${field}.emission`, code);
+    e.forEach((c, i) => requireNumberInRange(c, `${field}.emission[${i}]`, { min: 0 }, code));
+    emission = [e[0]! * e[3]!, e[1]! * e[3]!, e[2]! * e[3]!];
+  }
+  const material: NormalizedMaterial = {
+    baseColor: [colorIn[0]!, colorIn[1]!, colorIn[2]!, 1],
+    emission,
+    metallic: input.metallic === undefined ? 0 : requireNumberInRange(input.metallic, `${field}.metallic`, { min: 0, max: 1 }, code),
+    roughness: input.roughness === undefined ? 1 : requireNumberInRange(input.roughness, `${field}.roughness`, { min: 0, max: 1 }, code),
+    ior: input.ior === undefined ? 1.5 : requireNumberInRange(input.ior, `${field}.ior`, { min: 1, max: 10 }, code),
+    doubleSided: true,
+  };
+  if (input.type === 'sphere') {
+    const center = requireVec(input.center, 3, `${field}.center`, code) as [number, number, number];
+    const radius = requireNumberInRange(input.radius, `${field}.radius`, { min: Number.MIN_VALUE }, code);
+    return { type: 'sphere', a: center, b: [radius, 0, 0], material };
+  }
+  if (input.type === 'box') {
+    const min = requireVec(input.min, 3, `${field}.min`, code) as [number, number, number];
+    const max = requireVec(input.max, 3, `${field}.max`, code) as [number, number, number];
+    for (let i = 0; i < 3; i++) if (!(max[i]! > min[i]!)) fail(code, `${field}.max[${i}]`, 'box max must exceed min on every axis');
+    return { type: 'box', a: min, b: max, material };
+  }
+  return fail(code, `${field}.type`, `expected "sphere" or "box", got ${JSON.stringify((input as { type?: unknown }).type)}`);
+}
+
+/** SceneObject records; `materialIds[i]` is the material slot of object i. */
+export function packWavefrontSceneObjects(objects: readonly NormalizedSceneObject[], capacity = objects.length, materialIds?: readonly number[]): ArrayBuffer {
+  if (capacity < objects.length) throw new RangeError(`capacity ${capacity} is below the object count ${objects.length}`);
+  const buffer = allocateStructArray(sceneObjectLayout, capacity);
+  const view = new DataView(buffer);
+  objects.forEach((o, i) => {
+    writeStruct(sceneObjectLayout, view, i, {
+      a: o.a,
+      b: o.b,
+      kind: o.type === 'sphere' ? SCENE_OBJECT_SPHERE : SCENE_OBJECT_BOX,
+      materialId: materialIds ? materialIds[i]! : i,
+    });
+  });
+  return buffer;
+}

@@ -1,0 +1,82 @@
+import { test } from 'node:test';
+import assert from 'node:assert/strict';
+import { parseCliArgs, parseRenderArgs, renderDefaults, usage, type RenderCommand } from '../../src/cli/args.ts';
+import { GpuRendererError } from '../../src/errors/gpu-renderer-error.ts';
+
+function rejects(argv: string[], field: string, message?: RegExp): void {
+  assert.throws(
+    () => parseCliArgs(argv),
+    (e: unknown) => {
+      assert.ok(e instanceof GpuRendererError, String(e));
+      assert.equal(e.code, 'INVALID_OPTION');
+      assert.equal(e.field, field);
+      if (message) assert.match(e.message, message);
+      return true;
+    },
+  );
+}
+
+function render(argv: string[]): RenderCommand {
+  const command = parseRenderArgs(argv);
+  assert.equal(command.kind, 'render');
+  return command as RenderCommand;
+}
+
+test('defaults render the built-in scene', () => {
+  assert.deepEqual(parseCliArgs(['render']), { kind: 'render', scenePath: undefined, ...renderDefaults });
+});
+
+test('every flag, in both --flag value and --flag=value forms', () => {
+  const argv = ['scene.json', '--width', '32', '--height=24', '--spp', '16', '--spp-per-frame=2', '--max-depth', '5', '--seed', '4294967295',
+    '--tone-mapping', 'aces', '--exposure=0.5', '--out', 'out/x.png'];
+  assert.deepEqual(parseRenderArgs(argv), {
+    kind: 'render', scenePath: 'scene.json', width: 32, height: 24, spp: 16, sppPerFrame: 2, maxDepth: 5, seed: 4294967295,
+    toneMapping: 'aces', exposure: 0.5, out: 'out/x.png',
+  });
+  // The scene may come after the flags, or after `--` (a name starting with a dash).
+  assert.equal(render(['--spp', '1', 'a.json']).scenePath, 'a.json');
+  assert.equal(render(['--', '-odd.json']).scenePath, '-odd.json');
+});
+
+test('samples per frame never exceeds the target unless given', () => {
+  assert.equal(render(['--spp', '2']).sppPerFrame, 2);
+  assert.equal(render(['--spp', '100']).sppPerFrame, renderDefaults.sppPerFrame);
+});
+
+test('help', () => {
+  for (const argv of [[], ['--help'], ['-h'], ['help'], ['render', '--help'], ['render', '--width', '3', '-h']]) {
+    const command = parseCliArgs(argv);
+    assert.equal(command.kind, 'help', argv.join(' '));
+    assert.equal(command.kind === 'help' && command.text, usage);
+  }
+  for (const flag of ['--width', '--height', '--spp', '--max-depth', '--seed', '--tone-mapping', '--exposure', '--out']) assert.ok(usage.includes(flag), flag);
+});
+
+test('bad commands and flags are typed errors naming the flag', () => {
+  rejects(['draw'], 'command', /unknown command "draw"/);
+  rejects(['render', '--widht', '3'], '--widht', /unknown option/);
+  rejects(['render', '--width'], '--width', /expects a value/);
+  rejects(['render', '--width', '--height', '3'], '--width', /expects a value/);
+  rejects(['render', '--width', '0'], '--width', /between 1 and 16384/);
+  rejects(['render', '--width', '12.5'], '--width', /integer/);
+  rejects(['render', '--height', 'abc'], '--height', /integer/);
+  rejects(['render', '--spp', '-4'], '--spp');
+  rejects(['render', '--max-depth', '33'], '--max-depth', /between 1 and 32/);
+  rejects(['render', '--seed', '4294967296'], '--seed');
+  rejects(['render', '--tone-mapping', 'filmic'], '--tone-mapping', /neutral, aces or linear/);
+  rejects(['render', '--exposure', '0'], '--exposure', /> 0/);
+  rejects(['render', '--exposure', 'Infinity'], '--exposure');
+  rejects(['render', '--exposure='], '--exposure');
+  rejects(['render', '--out='], '--out');
+  rejects(['render', 'a.json', 'b.json'], 'scene', /only one scene file/);
+});
+
+test('error messages carry the field prefix the CLI prints', () => {
+  try {
+    parseCliArgs(['render', '--spp', 'x']);
+    assert.fail('expected an error');
+  } catch (e) {
+    assert.ok(e instanceof GpuRendererError);
+    assert.equal(`error [${e.code}] ${e.message}`, 'error [INVALID_OPTION] --spp: expected an integer, got "x"');
+  }
+});

@@ -1,0 +1,347 @@
+// Shared plumbing for the glTF BSDF tests: runs small WGSL kernels that call the bsdf-gltf API on
+// arrays of inputs (real WebGPU, no mocks), plus the statistics the tests need.
+import { composeShader } from '../../src/shaders/modules.ts';
+import { readBuffer, runCompute, testDevice, uploadBuffer } from '../helpers/gpu.ts';
+import { BufferUsage } from '../../src/gpu/webgpu-constants.ts';
+import type { GltfBsdfMaterial, Vec3 } from '../../src/materials/index.ts';
+
+export const WORKGROUP = 64;
+
+/**
+ * WGSL preamble: the bsdf-gltf module, a packed test material (2 x vec4f: base.rgb + metallic,
+ * roughness + ior) and a PCG hash RNG for in-kernel sampling.
+ */
+export function kernelPreamble(): string {
+  return `${composeShader(['bsdf-gltf'])}
+struct TestMaterial { a: vec4f, b: vec4f }
+fn t_material(t: TestMaterial) -> SurfaceMaterial {
+  return SurfaceMaterial(t.a.xyz, t.a.w, t.b.x, t.b.y, 0.0, 1.0, vec3f(1.0));
+}
+// PCG (O'Neill 2014) output permutation as a hash: decorrelated streams per invocation.
+fn t_pcg(v: u32) -> u32 {
+  let state = v * 747796405u + 2891336453u;
+  let word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
+  return (word >> 22u) ^ word;
+}
+fn t_unit(x: u32) -> f32 { return f32(x >> 8u) * (1.0 / 16777216.0); }
+`;
+}
+
+/** Packs materials as TestMaterial records (8 floats each). */
+export function packMaterials(materials: readonly GltfBsdfMaterial[]): Float32Array {
+  const out = new Float32Array(materials.length * 8);
+  materials.forEach((m, i) => {
+    out.set([m.baseColor[0], m.baseColor[1], m.baseColor[2], m.metallic, m.roughness, m.ior, 0, 0], i * 8);
+  });
+  return out;
+}
+
+/** Packs directions as vec4f (w = 0). */
+export function packDirections(dirs: readonly Vec3[]): Float32Array {
+  const out = new Float32Array(dirs.length * 4);
+  dirs.forEach((d, i) => out.set([d[0], d[1], d[2], 0], i * 4));
+  return out;
+}
+
+export interface KernelSpec {
+  /** Storage inputs, bound read-only as `in0`, `in1`, ... with the given WGSL element types. */
+  inputs: { data: Float32Array; type: string }[];
+  /** Number of f32 in the output array `out`. */
+  outputFloats: number;
+  /** Invocations (`i` in the body); guarded against the workgroup round-up. */
+  count: number;
+  /** WGSL statements run per invocation with `i: u32` in scope. */
+  body: string;
+  /** Extra WGSL declarations (helper functions). */
+  extra?: string;
+}
+
+export async function runKernel(spec: KernelSpec): Promise<Float32Array> {
+  const device = await testDevice();
+  const bindings = spec.inputs.map((input, k) => `@group(0) @binding(${k}) var<storage, read> in${k}: array<${input.type}>;`);
+  const code = `${kernelPreamble()}
+${spec.extra ?? ''}
+${bindings.join('\n')}
+@group(0) @binding(${spec.inputs.length}) var<storage, read_write> out: array<f32>;
+@compute @workgroup_size(${WORKGROUP}) fn main(@builtin(global_invocation_id) gid: vec3u) {
+  let i = gid.x;
+  if (i >= ${spec.count}u) { return; }
+${spec.body}
+}
+`;
+  const buffers = spec.inputs.map((input) => uploadBuffer(device, input.data));
+  const output = device.createBuffer({ size: Math.max(16, spec.outputFloats * 4), usage: BufferUsage.STORAGE | BufferUsage.COPY_SRC });
+  buffers.push(output);
+  await runCompute(device, code, 'main', buffers, Math.ceil(spec.count / WORKGROUP));
+  const result = new Float32Array(await readBuffer(device, output, spec.outputFloats * 4));
+  for (const b of buffers) b.destroy();
+  return result;
+}
+
+/** Deterministic PRNG for test inputs (mulberry32). */
+export function rng(seed: number): () => number {
+  let a = seed >>> 0;
+  return () => {
+    a = (a + 0x6d2b79f5) >>> 0;
+    let t = a;
+    t = Math.imul(t ^ (t >>> 15), t | 1);
+    t ^= t + Math.imul(t ^ (t >>> 7), t | 61);
+    return ((t ^ (t >>> 14)) >>> 0) / 4294967296;
+  };
+}
+
+/** Uniform direction on the upper hemisphere with z >= zMin. */
+export function randomUpperDirection(random: () => number, zMin = 0.02): Vec3 {
+  const z = zMin + (1 - zMin) * random();
+  const phi = 2 * Math.PI * random();
+  const r = Math.sqrt(Math.max(0, 1 - z * z));
+  return [r * Math.cos(phi), r * Math.sin(phi), z];
+}
+
+/** Direction at polar angle theta (radians) in the xz-plane. */
+export function viewAt(thetaDegrees: number): Vec3 {
+  const t = (thetaDegrees * Math.PI) / 180;
+  return [Math.sin(t), 0, Math.cos(t)];
+}
+
+// ---- statistics --------------------------------------------------------------------------------
+
+/** ln Gamma(x), Lanczos approximation (g = 7, n = 9), |error| < 1e-13 for x > 0. */
+export function logGamma(x: number): number {
+  const c = [
+    0.99999999999980993, 676.5203681218851, -1259.1392167224028, 771.32342877765313, -176.61502916214059,
+    12.507343278686905, -0.13857109526572012, 9.9843695780195716e-6, 1.5056327351493116e-7,
+  ];
+  if (x < 0.5) return Math.log(Math.PI / Math.sin(Math.PI * x)) - logGamma(1 - x);
+  const xm = x - 1;
+  let a = c[0];
+  const t = xm + 7.5;
+  for (let i = 1; i < 9; i++) a += c[i] / (xm + i);
+  return 0.5 * Math.log(2 * Math.PI) + (xm + 0.5) * Math.log(t) - t + Math.log(a);
+}
+
+/**
+ * Regularized upper incomplete gamma Q(a, x) = Gamma(a, x) / Gamma(a): series for x < a + 1,
+ * Lentz continued fraction otherwise (Numerical Recipes 3rd ed., section 6.2).
+ */
+export function gammaQ(a: number, x: number): number {
+  if (x <= 0) return 1;
+  const lnPre = a * Math.log(x) - x - logGamma(a);
+  if (x < a + 1) {
+    let sum = 1 / a;
+    let term = sum;
+    for (let n = 1; n < 10000; n++) {
+      term *= x / (a + n);
+      sum += term;
+      if (Math.abs(term) < Math.abs(sum) * 1e-16) break;
+    }
+    return 1 - sum * Math.exp(lnPre);
+  }
+  const tiny = 1e-300;
+  let b = x + 1 - a;
+  let c = 1 / tiny;
+  let d = 1 / b;
+  let h = d;
+  for (let i = 1; i < 10000; i++) {
+    const an = -i * (i - a);
+    b += 2;
+    d = an * d + b;
+    if (Math.abs(d) < tiny) d = tiny;
+    c = b + an / c;
+    if (Math.abs(c) < tiny) c = tiny;
+    d = 1 / d;
+    const del = d * c;
+    h *= del;
+    if (Math.abs(del - 1) < 1e-16) break;
+  }
+  return Math.exp(lnPre) * h;
+}
+
+/** Upper tail of the chi-square distribution with `dof` degrees of freedom. */
+export function chiSquarePValue(chi2: number, dof: number): number {
+  return gammaQ(dof / 2, chi2 / 2);
+}
+
+export interface ChiSquareResult {
+  chi2: number;
+  dof: number;
+  pValue: number;
+  pooledCells: number;
+  /** A cell observed samples where the integrated pdf is 0 (sampling outside the support). */
+  outsideSupport: boolean;
+}
+
+/**
+ * Pearson chi-square test of observed against expected counts, pooling cells expecting fewer than
+ * `minExpected` samples into one (as Mitsuba 3's ChiSquareTest does).
+ */
+export function chiSquareTest(observed: ArrayLike<number>, expected: ArrayLike<number>, minExpected = 5): ChiSquareResult {
+  const order = Array.from({ length: expected.length }, (_, i) => i).sort((a, b) => expected[a] - expected[b]);
+  let chi2 = 0;
+  let dof = -1;
+  let pooledObs = 0;
+  let pooledExp = 0;
+  let pooledCells = 0;
+  let outsideSupport = false;
+  for (const i of order) {
+    if (expected[i] === 0 && observed[i] > 0) outsideSupport = true;
+    if (expected[i] < minExpected) {
+      pooledObs += observed[i];
+      pooledExp += expected[i];
+      pooledCells++;
+    } else {
+      const d = observed[i] - expected[i];
+      chi2 += (d * d) / expected[i];
+      dof++;
+    }
+  }
+  if (pooledExp > 0) {
+    const d = pooledObs - pooledExp;
+    chi2 += (d * d) / pooledExp;
+    dof++;
+  } else if (pooledObs > 0) {
+    outsideSupport = true;
+  }
+  return { chi2, dof, pValue: chiSquarePValue(chi2, dof), pooledCells, outsideSupport };
+}
+
+export { testDevice };
+
+// ---- sampling and quadrature kernels ----------------------------------------------------------
+
+/** Floats per sample written by sampleOnGpu. */
+export const SAMPLE_STRIDE = 16;
+
+export interface SampleView {
+  wi: Vec3;
+  pdf: number;
+  f: Vec3;
+  valid: boolean;
+  weight: Vec3;
+  isDelta: boolean;
+  /** bsdf_pdf(wo, s.wi) and bsdf_eval(wo, s.wi) evaluated separately in the same kernel. */
+  pdfAtWi: number;
+  evalAtWi: Vec3;
+}
+
+export function sampleAt(data: Float32Array, i: number): SampleView {
+  const o = i * SAMPLE_STRIDE;
+  return {
+    wi: [data[o], data[o + 1], data[o + 2]],
+    pdf: data[o + 3],
+    f: [data[o + 4], data[o + 5], data[o + 6]],
+    valid: data[o + 7] !== 0,
+    weight: [data[o + 8], data[o + 9], data[o + 10]],
+    isDelta: data[o + 11] !== 0,
+    pdfAtWi: data[o + 12],
+    evalAtWi: [data[o + 13], data[o + 14], data[o + 15]],
+  };
+}
+
+/** n calls of bsdf_sample(m, wo, u_lobe, u) with independent uniform (u_lobe, u) from a hash of (seed, i). */
+export function sampleOnGpu(m: GltfBsdfMaterial, wo: Vec3, n: number, seed: number): Promise<Float32Array> {
+  return runKernel({
+    inputs: [
+      { data: packMaterials([m]), type: 'TestMaterial' },
+      { data: packDirections([wo]), type: 'vec4f' },
+    ],
+    outputFloats: n * SAMPLE_STRIDE,
+    count: n,
+    body: `
+  let m = t_material(in0[0]);
+  let wo = in1[0].xyz;
+  let h0 = t_pcg(i ^ t_pcg(${seed >>> 0}u));
+  let h1 = t_pcg(h0);
+  let h2 = t_pcg(h1);
+  let s = bsdf_sample(m, wo, t_unit(h0), vec2f(t_unit(h1), t_unit(h2)));
+  let o = i * ${SAMPLE_STRIDE}u;
+  out[o] = s.wi.x; out[o + 1u] = s.wi.y; out[o + 2u] = s.wi.z; out[o + 3u] = s.pdf;
+  out[o + 4u] = s.f.x; out[o + 5u] = s.f.y; out[o + 6u] = s.f.z; out[o + 7u] = select(0.0, 1.0, s.valid);
+  out[o + 8u] = s.weight.x; out[o + 9u] = s.weight.y; out[o + 10u] = s.weight.z; out[o + 11u] = select(0.0, 1.0, s.is_delta);
+  let p = bsdf_pdf(m, wo, s.wi);
+  let e = bsdf_eval(m, wo, s.wi);
+  out[o + 12u] = p; out[o + 13u] = e.x; out[o + 14u] = e.y; out[o + 15u] = e.z;`,
+  });
+}
+
+export interface CellIntegrals {
+  nTheta: number;
+  nPhi: number;
+  /** Per (theta, phi) cell, theta-major: integral of bsdf_pdf over the cell's solid angle. */
+  pdf: Float64Array;
+  /** Per cell: integral of bsdf_eval * cos (rgb interleaved). */
+  fCos: Float64Array;
+}
+
+/**
+ * Integrates bsdf_pdf and bsdf_eval * cos over an (theta in [0, pi/2], phi in [0, 2 pi)) grid, each
+ * cell by an s x s midpoint rule in (theta, phi) with the sin(theta) Jacobian.
+ */
+export async function integrateCellsOnGpu(m: GltfBsdfMaterial, wo: Vec3, nTheta: number, nPhi: number, s: number): Promise<CellIntegrals> {
+  const cells = nTheta * nPhi;
+  const raw = await runKernel({
+    inputs: [
+      { data: packMaterials([m]), type: 'TestMaterial' },
+      { data: packDirections([wo]), type: 'vec4f' },
+    ],
+    outputFloats: cells * 4,
+    count: cells,
+    body: `
+  let m = t_material(in0[0]);
+  let wo = in1[0].xyz;
+  let it = i / ${nPhi}u;
+  let ip = i % ${nPhi}u;
+  let dt = (PI / 2.0) / f32(${nTheta * s});
+  let dp = TWO_PI / f32(${nPhi * s});
+  var sum_pdf = 0.0;
+  var sum_f = vec3f(0.0);
+  for (var a = 0u; a < ${s}u; a++) {
+    let theta = (f32(it * ${s}u + a) + 0.5) * dt;
+    let st = sin(theta);
+    let ct = cos(theta);
+    var row_pdf = 0.0;
+    var row_f = vec3f(0.0);
+    for (var b = 0u; b < ${s}u; b++) {
+      let phi = (f32(ip * ${s}u + b) + 0.5) * dp;
+      let wi = vec3f(st * cos(phi), st * sin(phi), ct);
+      row_pdf += bsdf_pdf(m, wo, wi);
+      row_f += bsdf_eval(m, wo, wi) * ct;
+    }
+    sum_pdf += row_pdf * st;
+    sum_f += row_f * st;
+  }
+  let o = i * 4u;
+  out[o] = sum_pdf * dt * dp;
+  out[o + 1u] = sum_f.x * dt * dp; out[o + 2u] = sum_f.y * dt * dp; out[o + 3u] = sum_f.z * dt * dp;`,
+  });
+  const pdf = new Float64Array(cells);
+  const fCos = new Float64Array(cells * 3);
+  for (let c = 0; c < cells; c++) {
+    pdf[c] = raw[c * 4];
+    fCos.set([raw[c * 4 + 1], raw[c * 4 + 2], raw[c * 4 + 3]], c * 3);
+  }
+  return { nTheta, nPhi, pdf, fCos };
+}
+
+/** Histogram of valid, non-delta sample directions on the same (theta, phi) grid. */
+export function histogram(data: Float32Array, n: number, nTheta: number, nPhi: number): Float64Array {
+  const counts = new Float64Array(nTheta * nPhi);
+  for (let i = 0; i < n; i++) {
+    const o = i * SAMPLE_STRIDE;
+    if (data[o + 7] === 0 || data[o + 11] !== 0) continue;
+    const z = Math.min(1, Math.max(-1, data[o + 2]));
+    const theta = Math.acos(z);
+    let phi = Math.atan2(data[o + 1], data[o]);
+    if (phi < 0) phi += 2 * Math.PI;
+    const it = Math.min(nTheta - 1, Math.floor((theta / (Math.PI / 2)) * nTheta));
+    const ip = Math.min(nPhi - 1, Math.floor((phi / (2 * Math.PI)) * nPhi));
+    counts[it * nPhi + ip]++;
+  }
+  return counts;
+}
+
+export function sum(values: ArrayLike<number>, stride = 1, offset = 0): number {
+  let s = 0;
+  for (let i = offset; i < values.length; i += stride) s += values[i];
+  return s;
+}

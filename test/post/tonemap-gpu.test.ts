@@ -1,0 +1,72 @@
+import { test } from 'node:test';
+import assert from 'node:assert/strict';
+import { composeShader } from '../../src/shaders/modules.ts';
+import { applyToneMapping, linearToSrgb, toneMappingModeIds, toneMappingNames } from '../../src/post/tone-mapping.ts';
+import { readBuffer, runCompute, testDevice, uploadBuffer } from '../helpers/gpu.ts';
+
+// For each input colour the kernel writes the three tone mappings and the sRGB encoding of the
+// clamped input, so one dispatch checks every WGSL function against its JS mirror.
+const kernel = /* wgsl */ `
+@group(0) @binding(0) var<storage, read> inputs: array<vec4f>;
+@group(0) @binding(1) var<storage, read_write> outputs: array<vec4f>;
+
+@compute @workgroup_size(64)
+fn main(@builtin(global_invocation_id) id: vec3u) {
+  let i = id.x;
+  if (i >= arrayLength(&inputs)) { return; }
+  let c = inputs[i].xyz;
+  outputs[4u * i + 0u] = vec4f(apply_tone_mapping(c, TONE_MAPPING_NEUTRAL), 1.0);
+  outputs[4u * i + 1u] = vec4f(apply_tone_mapping(c, TONE_MAPPING_ACES), 1.0);
+  outputs[4u * i + 2u] = vec4f(apply_tone_mapping(c, TONE_MAPPING_LINEAR), 1.0);
+  outputs[4u * i + 3u] = vec4f(linear_to_srgb(clamp(c, vec3f(0.0), vec3f(1.0))), 1.0);
+}
+`;
+
+/** Deterministic inputs: grey ramps across 8 decades, thresholds, and pseudo-random colours. */
+function inputs(): Float32Array {
+  const colours: number[][] = [];
+  for (let i = 0; i <= 160; i++) {
+    const x = Math.pow(10, -4 + i / 20);
+    colours.push([x, x, x]);
+  }
+  for (const x of [0, 0.0031308, 0.04045, 0.08, 0.76, 0.8, 1]) colours.push([x, x, x]);
+  let s = 0x9e3779b9;
+  const rand = (): number => {
+    s ^= s << 13;
+    s ^= s >>> 17;
+    s ^= s << 5;
+    return (s >>> 0) / 4294967296;
+  };
+  for (let i = 0; i < 600; i++) colours.push([0, 0, 0].map(() => Math.pow(10, -3 + 5 * rand())));
+  const data = new Float32Array(colours.length * 4);
+  colours.forEach((c, i) => data.set([c[0], c[1], c[2], 0], 4 * i));
+  return data;
+}
+
+test('WGSL tone mapping and sRGB encoding equal the JS mirror', async () => {
+  assert.deepEqual(toneMappingModeIds, { neutral: 0, aces: 1, linear: 2 });
+  const device = await testDevice();
+  const data = inputs();
+  const n = data.length / 4;
+  const input = uploadBuffer(device, data);
+  const output = uploadBuffer(device, new Float32Array(n * 16));
+  await runCompute(device, `${composeShader(['tonemap'])}\n${kernel}`, 'main', [input, output], Math.ceil(n / 64));
+  const out = new Float32Array(await readBuffer(device, output));
+  for (let i = 0; i < n; i++) {
+    const c = [data[4 * i], data[4 * i + 1], data[4 * i + 2]];
+    const expected = [
+      ...toneMappingNames.map((mode) => applyToneMapping(c, mode)),
+      c.map((v) => linearToSrgb(Math.min(Math.max(v, 0), 1))),
+    ];
+    expected.forEach((e, k) => {
+      for (let ch = 0; ch < 3; ch++) {
+        const got = out[16 * i + 4 * k + ch];
+        const err = Math.abs(got - e[ch]);
+        // f32 on the GPU vs f64 here: a few ulps of pow/division, far below one 8-bit display step.
+        assert.ok(err < 2e-5, `input ${c} output ${k} channel ${ch}: gpu ${got} vs js ${e[ch]}`);
+      }
+    });
+  }
+  input.destroy();
+  output.destroy();
+});
