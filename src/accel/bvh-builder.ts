@@ -387,10 +387,9 @@ function createBuildState(positions: Float32Array, options: BvhBuildOptions = {}
     // Partition slots by the chosen plane, recomputing each side's bounds and centroid bounds on the fly.
     const kk = bestAxis === 0 ? k0 : bestAxis === 1 ? k1 : k2;
     const mm = bestAxis === 0 ? m0 : bestAxis === 1 ? m1 : m2;
-    cbL[0] = cbL[1] = cbL[2] = Infinity;
-    cbL[3] = cbL[4] = cbL[5] = -Infinity;
-    cbR[0] = cbR[1] = cbR[2] = Infinity;
-    cbR[3] = cbR[4] = cbR[5] = -Infinity;
+    // Centroid bounds of both sides in locals (no per-triangle array indirection).
+    let l0 = Infinity, l1 = Infinity, l2 = Infinity, l3 = -Infinity, l4 = -Infinity, l5 = -Infinity;
+    let r0 = Infinity, r1 = Infinity, r2 = Infinity, r3 = -Infinity, r4 = -Infinity, r5 = -Infinity;
     let i = start;
     let j = start + count - 1;
     while (i <= j) {
@@ -398,19 +397,27 @@ function createBuildState(positions: Float32Array, options: BvhBuildOptions = {}
       const cx = boxes[s]! + boxes[s + 3]!, cy = boxes[s + 1]! + boxes[s + 4]!, cz = boxes[s + 2]! + boxes[s + 5]!;
       const f = kk * ((bestAxis === 0 ? cx : bestAxis === 1 ? cy : cz) - mm);
       const b = f >= bins ? bins - 1 : f > 0 ? f | 0 : 0;
-      const target = b < bestPlane ? cbL : cbR;
-      if (cx < target[0]!) target[0] = cx;
-      if (cy < target[1]!) target[1] = cy;
-      if (cz < target[2]!) target[2] = cz;
-      if (cx > target[3]!) target[3] = cx;
-      if (cy > target[4]!) target[4] = cy;
-      if (cz > target[5]!) target[5] = cz;
-      if (b < bestPlane) i++;
-      else {
+      if (b < bestPlane) {
+        if (cx < l0) l0 = cx;
+        if (cy < l1) l1 = cy;
+        if (cz < l2) l2 = cz;
+        if (cx > l3) l3 = cx;
+        if (cy > l4) l4 = cy;
+        if (cz > l5) l5 = cz;
+        i++;
+      } else {
+        if (cx < r0) r0 = cx;
+        if (cy < r1) r1 = cy;
+        if (cz < r2) r2 = cz;
+        if (cx > r3) r3 = cx;
+        if (cy > r4) r4 = cy;
+        if (cz > r5) r5 = cz;
         swapSlots(i, j);
         j--;
       }
     }
+    cbL[0] = l0; cbL[1] = l1; cbL[2] = l2; cbL[3] = l3; cbL[4] = l4; cbL[5] = l5;
+    cbR[0] = r0; cbR[1] = r1; cbR[2] = r2; cbR[3] = r3; cbR[4] = r4; cbR[5] = r5;
     const mid = i;
     if (mid - start !== bestLeftN) throw new Error(`buildBvh: internal error, partition ${mid - start} != binned count ${bestLeftN}`);
     // Child boxes are unions of their bins.

@@ -204,7 +204,8 @@ export function createRayTracingRenderPlan(options: RayTracingRenderPlanOptions)
         // At most one shadow ray per path per bounce.
         shadowQueueCapacity: capacity,
         shadowRecordBytes: shadowRayLayout.size,
-        counterSlots: queueCounterSlots,
+        // A copy: freezing the plan must not freeze records.ts's own object.
+        counterSlots: { ...queueCounterSlots },
         counterCount: queueCounterCount,
         workgroupSize: rendererWavefrontComputeWorkgroupSize,
       },

@@ -1,0 +1,185 @@
+/**
+ * CPU BVH construction benchmark: our binned SAH builder (src/accel/bvh-builder.ts) beside
+ * three-mesh-bvh's MeshBVH with its SAH and CENTER strategies, on the same deterministic 100k- and
+ * 1M-triangle meshes in the same process. Figures, not pass/fail: build time (median of a few runs)
+ * and the SAH cost of each tree under one cost model (C_trav = C_isect = 1, bvh-sah.ts), as ratios.
+ *
+ * Settings (chosen to be comparable):
+ * - ours: maxLeafSize 4 (smaller nodes become leaves), leaf cap 16, 16 bins, depth <= 48.
+ * - three-mesh-bvh: targetLeafSize 4, maxDepth 48, indirect: true (it permutes an index array, like
+ *   our triangleOrder, instead of rewriting the geometry), verbose: false. Its SAH uses 8 bins (or
+ *   every centroid in small nodes) and C_isect = 1.25; CENTER splits the longest axis at its middle.
+ * Times are wall clock around the whole call (ours includes the final SAH evaluation, ~1% of it).
+ */
+import { buildBvh } from '../src/accel/bvh-builder.ts';
+import { computeThreeMeshBvhSahCost } from '../src/accel/bvh-sah.ts';
+
+export interface BvhBenchRow {
+  mesh: string;
+  triangles: number;
+  builder: string;
+  runs: number;
+  buildMsMedian: number;
+  buildMsAll: number[];
+  sahCost: number;
+  nodeCount: number;
+}
+
+export interface BvhBenchRatio {
+  mesh: string;
+  versus: string;
+  /** ours / theirs: < 1 means we build faster. */
+  buildTimeRatio: number;
+  /** ours / theirs: < 1 means our tree is cheaper to trace under the SAH model. */
+  sahCostRatio: number;
+}
+
+export interface BvhBenchResult {
+  name: 'bvh';
+  node: string;
+  threeMeshBvhVersion: string;
+  settings: Record<string, unknown>;
+  rows: BvhBenchRow[];
+  ratios: BvhBenchRatio[];
+  totalMs: number;
+}
+
+/** mulberry32 */
+function rng(seed: number): () => number {
+  let s = seed | 0;
+  return () => {
+    s = (s + 0x6d2b79f5) | 0;
+    let t = Math.imul(s ^ (s >>> 15), 1 | s);
+    t = (t + Math.imul(t ^ (t >>> 7), 61 | t)) ^ t;
+    return ((t ^ (t >>> 14)) >>> 0) / 4294967296;
+  };
+}
+
+/**
+ * A displaced terrain grid (80% of the triangles: uniform, well-behaved) plus clutter (20%): rocks of
+ * widely varying size, long thin "grass blades" and a few large slanted panels spread over and above
+ * the terrain, so naive splits straddle big triangles and the SAH has something to win.
+ */
+export function benchmarkMesh(triangles: number, seed = 1): Float32Array {
+  const r = rng(seed);
+  const out = new Float32Array(triangles * 9);
+  const gridTris = Math.floor(triangles * 0.8);
+  const g = Math.floor(Math.sqrt(gridTris / 2));
+  const size = 100;
+  const h = (x: number, y: number): number =>
+    6 * Math.sin(x * 0.05) * Math.cos(y * 0.07) + 2 * Math.sin(x * 0.31 + y * 0.23) + 0.5 * Math.cos(x * 1.7 - y * 1.3);
+  let o = 0;
+  const put = (x: number, y: number, z: number): void => {
+    out[o++] = x;
+    out[o++] = y;
+    out[o++] = z;
+  };
+  const cell = size / g;
+  for (let j = 0; j < g; j++) {
+    for (let i = 0; i < g; i++) {
+      const x0 = i * cell, y0 = j * cell, x1 = x0 + cell, y1 = y0 + cell;
+      put(x0, y0, h(x0, y0)); put(x1, y0, h(x1, y0)); put(x1, y1, h(x1, y1));
+      put(x0, y0, h(x0, y0)); put(x1, y1, h(x1, y1)); put(x0, y1, h(x0, y1));
+    }
+  }
+  const placed = g * g * 2;
+  for (let t = placed; t < triangles; t++) {
+    const cx = r() * size, cy = r() * size;
+    const cz = h(cx, cy) + r() * 20;
+    const kind = r();
+    // Log-uniform sizes from 1 cm to 10 m; blades are long and thin; 1% are big panels.
+    const s = kind < 0.01 ? 10 + r() * 30 : 0.01 * 1000 ** r();
+    const stretch = kind > 0.7 ? [0.05, 0.05, 8] : [1, 1, 1];
+    for (let v = 0; v < 3; v++) {
+      put(cx + (r() - 0.5) * s * stretch[0]!, cy + (r() - 0.5) * s * stretch[1]!, cz + (r() - 0.5) * s * stretch[2]!);
+    }
+  }
+  return out;
+}
+
+interface ThreeModule {
+  BufferGeometry: new () => { setAttribute(name: string, attribute: unknown): void; dispose(): void };
+  BufferAttribute: new (array: Float32Array, itemSize: number) => unknown;
+}
+interface MeshBvhModule {
+  MeshBVH: new (geometry: unknown, options: Record<string, unknown>) => { _roots: ArrayBuffer[] };
+  SAH: number;
+  CENTER: number;
+}
+
+function median(values: number[]): number {
+  const s = [...values].sort((a, b) => a - b);
+  const m = s.length >> 1;
+  return s.length % 2 ? s[m]! : (s[m - 1]! + s[m]!) / 2;
+}
+
+export async function runBvhBenchmark(options: { sizes?: number[]; log?: (line: string) => void } = {}): Promise<BvhBenchResult> {
+  const log = options.log ?? ((line: string) => console.log(line));
+  const began = performance.now();
+  // Loaded through variables so the type checker does not need three's (absent) type declarations.
+  const threeSpec = 'three';
+  const bvhSpec = 'three-mesh-bvh';
+  const THREE = (await import(threeSpec)) as ThreeModule;
+  const TMB = (await import(bvhSpec)) as MeshBvhModule;
+  const { readFile } = await import('node:fs/promises');
+  const tmbPackage = JSON.parse(await readFile(new URL('../node_modules/three-mesh-bvh/package.json', import.meta.url), 'utf8')) as { version: string };
+
+  const sizes = options.sizes ?? [100_000, 1_000_000];
+  const rows: BvhBenchRow[] = [];
+  const ratios: BvhBenchRatio[] = [];
+  for (const triangles of sizes) {
+    const positions = benchmarkMesh(triangles);
+    const mesh = `terrain+clutter ${triangles >= 1e6 ? `${triangles / 1e6}M` : `${triangles / 1e3}k`}`;
+    const runs = triangles >= 500_000 ? 3 : 5;
+    const geometry = new THREE.BufferGeometry();
+    geometry.setAttribute('position', new THREE.BufferAttribute(positions, 3));
+
+    const builders: Array<[string, () => { sahCost: number; nodeCount: number }]> = [
+      ['ours (binned SAH)', () => {
+        const r = buildBvh(positions, { maxLeafSize: 4, binCount: 16 });
+        return { sahCost: r.sahCost, nodeCount: r.nodeCount };
+      }],
+      ...([['three-mesh-bvh SAH', TMB.SAH], ['three-mesh-bvh CENTER', TMB.CENTER]] as const).map(
+        ([name, strategy]) =>
+          [name, () => {
+            const bvh = new TMB.MeshBVH(geometry, { strategy, targetLeafSize: 4, maxDepth: 48, indirect: true, verbose: false });
+            const root = bvh._roots[0]!;
+            return { sahCost: computeThreeMeshBvhSahCost(root), nodeCount: root.byteLength / 32 };
+          }] as [string, () => { sahCost: number; nodeCount: number }],
+      ),
+    ];
+    // One untimed warm-up per builder (JIT), on the small mesh only.
+    if (triangles < 500_000) for (const [, build] of builders) build();
+    for (const [builder, build] of builders) {
+      const times: number[] = [];
+      let last = { sahCost: 0, nodeCount: 0 };
+      for (let k = 0; k < runs; k++) {
+        const t0 = performance.now();
+        last = build();
+        times.push(performance.now() - t0);
+      }
+      const row: BvhBenchRow = { mesh, triangles, builder, runs, buildMsMedian: median(times), buildMsAll: times, sahCost: last.sahCost, nodeCount: last.nodeCount };
+      rows.push(row);
+      log(`  ${mesh}: ${builder.padEnd(22)} ${row.buildMsMedian.toFixed(0).padStart(6)} ms (median of ${runs})  SAH ${row.sahCost.toFixed(2)}  nodes ${row.nodeCount}`);
+    }
+    geometry.dispose();
+    const ours = rows.find((r) => r.mesh === mesh && r.builder.startsWith('ours'))!;
+    for (const theirs of rows.filter((r) => r.mesh === mesh && !r.builder.startsWith('ours'))) {
+      ratios.push({ mesh, versus: theirs.builder, buildTimeRatio: ours.buildMsMedian / theirs.buildMsMedian, sahCostRatio: ours.sahCost / theirs.sahCost });
+    }
+  }
+  return {
+    name: 'bvh',
+    node: process.version,
+    threeMeshBvhVersion: tmbPackage.version,
+    settings: {
+      costModel: 'C_trav = 1, C_isect = 1, surface areas relative to the root',
+      ours: { maxLeafSize: 4, leafSizeCap: 16, binCount: 16, maxDepth: 48 },
+      threeMeshBvh: { targetLeafSize: 4, maxDepth: 48, indirect: true },
+      timing: 'wall clock per build; median of 5 runs (100k, after one warm-up) or 3 runs (1M)',
+    },
+    rows,
+    ratios,
+    totalMs: performance.now() - began,
+  };
+}

@@ -1,0 +1,90 @@
+// Bad input at the public boundary: each case gets a typed error naming the field, raised before
+// any GPU work, and the shared device stays healthy (nothing half-renders).
+import { test } from 'node:test';
+import assert from 'node:assert/strict';
+import { createWavefrontPathTracingComputeRenderer, GpuRendererError } from '../../src/index.ts';
+import { testDevice } from '../helpers/gpu.ts';
+
+const tri = [0, 0, 0, 1, 0, 0, 0, 1, 0];
+
+async function expectError(options: Record<string, unknown>, code: string, field: string | RegExp): Promise<void> {
+  const device = await testDevice();
+  await assert.rejects(
+    createWavefrontPathTracingComputeRenderer({ device, width: 8, height: 8, ...options } as never),
+    (error: unknown) => {
+      assert.ok(error instanceof GpuRendererError, `expected GpuRendererError, got ${String(error)}`);
+      assert.equal(error.code, code);
+      if (typeof field === 'string') assert.equal(error.field, field);
+      else assert.match(error.field ?? '', field);
+      assert.ok(error.message.includes(error.field ?? ''), 'the message names the field');
+      return true;
+    },
+  );
+}
+
+test('non-finite positions name the offending component', async () => {
+  await expectError({ meshes: [{ positions: [0, 0, 0, 1, NaN, 0, 0, 1, 0] }] }, 'INVALID_MESH', 'meshes[0].positions[4]');
+  await expectError({ meshes: [{ positions: tri }, { positions: [0, 0, Infinity, 1, 0, 0, 0, 1, 0] }] }, 'INVALID_MESH', 'meshes[1].positions[2]');
+});
+
+test('indices out of range, not a multiple of 3, or not integers', async () => {
+  await expectError({ meshes: [{ positions: tri, indices: [0, 1, 3] }] }, 'INVALID_MESH', 'meshes[0].indices[2]');
+  await expectError({ meshes: [{ positions: tri, indices: [0, 1, -1] }] }, 'INVALID_MESH', 'meshes[0].indices[2]');
+  await expectError({ meshes: [{ positions: tri, indices: [0, 1, 2, 0] }] }, 'INVALID_MESH', 'meshes[0].indices');
+  await expectError({ meshes: [{ positions: tri, indices: [0, 1.5, 2] }] }, 'INVALID_MESH', 'meshes[0].indices[1]');
+});
+
+test('empty meshes and mismatched attribute lengths', async () => {
+  await expectError({ meshes: [{ positions: [] }] }, 'INVALID_MESH', 'meshes[0].positions');
+  await expectError({ meshes: [{ positions: tri, indices: [] }] }, 'INVALID_MESH', 'meshes[0].indices');
+  await expectError({ meshes: [{ positions: [0, 0, 0, 1] }] }, 'INVALID_MESH', 'meshes[0].positions');
+  await expectError({ meshes: [{ positions: tri, normals: [0, 0, 1, 0, 0, 1] }] }, 'INVALID_MESH', 'meshes[0].normals');
+  await expectError({ meshes: [{ positions: tri, uvs: [0, 0, 1, 0] }] }, 'INVALID_MESH', 'meshes[0].uvs');
+  await expectError({ meshes: [{ positions: tri, material: { roughnessFactor: 2 } }] }, 'INVALID_MESH', 'meshes[0].material.roughnessFactor');
+  await expectError({ meshes: [{ positions: tri, material: { ior: 0.5 } }] }, 'INVALID_MESH', 'meshes[0].material.ior');
+});
+
+test('maxDepth, size, samplesPerPixel and camera out of range', async () => {
+  await expectError({ maxDepth: 0 }, 'INVALID_OPTION', 'maxDepth');
+  await expectError({ maxDepth: 33 }, 'INVALID_OPTION', 'maxDepth');
+  await expectError({ maxDepth: 2.5 }, 'INVALID_OPTION', 'maxDepth');
+  await expectError({ width: 0 }, 'INVALID_OPTION', 'width');
+  await expectError({ height: Number.NaN }, 'INVALID_OPTION', 'height');
+  await expectError({ samplesPerPixel: 0 }, 'INVALID_OPTION', 'samplesPerPixel');
+  await expectError({ camera: { position: [0, 0, 1], target: [0, 0, 1] } }, 'INVALID_OPTION', 'camera.target');
+  await expectError({ camera: { position: [0, 0, 1], target: [0, 0, 0], up: [0, 0, 1] } }, 'INVALID_OPTION', 'camera.up');
+  await expectError({ environment: { color: [1, -1, 0] } }, 'INVALID_OPTION', 'environment.color[1]');
+  await expectError({ sceneObjects: [{ type: 'cone' }] }, 'INVALID_SCENE_OBJECT', 'sceneObjects[0].type');
+  await expectError({ sceneObjects: [{ type: 'sphere', center: [0, 0, 0], radius: -1 }] }, 'INVALID_SCENE_OBJECT', 'sceneObjects[0].radius');
+});
+
+test('scenes beyond the device limits are rejected before allocation, naming the field', async () => {
+  const device = await testDevice();
+  const limit = Math.min(device.limits.maxStorageBufferBindingSize, device.limits.maxBufferSize);
+  // Enough triangles that the 80-byte attribute records overflow one storage binding.
+  const triangles = Math.floor(limit / 80) + 1;
+  if (triangles > 4_000_000) return; // a device this large is not tested here
+  const positions = new Float32Array(triangles * 9);
+  for (let t = 0; t < triangles; t++) positions.set([t, 0, 0, t + 1, 0, 0, t, 1, 0], 9 * t);
+  await expectError({ meshes: [{ positions }] }, 'SCENE_TOO_LARGE', 'meshes');
+  // A frame too large for one accumulation binding.
+  const side = Math.ceil(Math.sqrt(limit / 16)) + 1;
+  if (side <= 16384) await expectError({ width: side, height: side }, 'SCENE_TOO_LARGE', 'width');
+});
+
+test('after rejected input the shared device still renders a valid scene', async () => {
+  const device = await testDevice();
+  const renderer = await createWavefrontPathTracingComputeRenderer({
+    device, width: 8, height: 8, samplesPerPixel: 2,
+    meshes: [{ positions: [-1, -1, 0, 1, -1, 0, 0, 1, 0], material: { emissiveFactor: [1, 1, 1], baseColorFactor: [0, 0, 0, 1] } }],
+    camera: { position: [0, 0, 3], target: [0, 0, 0] },
+  });
+  const stats = await renderer.renderFrame();
+  assert.equal(stats.samplesAccumulated, 2);
+  const { data } = await renderer.readRadiance();
+  // The centre pixel sees the emitter's front face: exactly its radiance.
+  const centre = (4 * 8 + 4) * 4;
+  assert.ok(Math.abs(data[centre]! - 1) < 1e-6);
+  renderer.destroy();
+  await assert.rejects(renderer.renderFrame(), (e: unknown) => e instanceof GpuRendererError && e.code === 'RENDERER_DESTROYED');
+});
