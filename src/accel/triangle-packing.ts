@@ -30,6 +30,24 @@ const TRI_WORDS = triangleLayout.size / 4;
  * the buffer sees the same triangle), with sourceIndex = the original index. At least one record is
  * written, since WebGPU bindings cannot be empty.
  */
+/**
+ * A triangle whose edges are parallel to within 1e-6 rad (collinear "needles", zero area up to
+ * rounding) has no visible surface, but Moller-Trumbore's determinant for it is f32 rounding noise
+ * rather than 0, which yields hits at arbitrary t. Such triangles are stored with exactly zero
+ * edges, so every traversal rejects them (det == 0) on the GPU and in the JS mirrors alike.
+ */
+function collapseNeedle(f: Float32Array, o: number): void {
+  const ax = f[o + W.e1]!, ay = f[o + W.e1 + 1]!, az = f[o + W.e1 + 2]!;
+  const bx = f[o + W.e2]!, by = f[o + W.e2 + 1]!, bz = f[o + W.e2 + 2]!;
+  const cross = Math.hypot(ay * bz - az * by, az * bx - ax * bz, ax * by - ay * bx);
+  if (cross <= 1e-6 * Math.hypot(ax, ay, az) * Math.hypot(bx, by, bz)) {
+    for (let c = 0; c < 3; c++) {
+      f[o + W.e1 + c] = 0;
+      f[o + W.e2 + c] = 0;
+    }
+  }
+}
+
 export function packWavefrontTriangles(triangles: Float32Array, order: Uint32Array, meta: TriangleMeta = {}): ArrayBuffer {
   const count = order.length;
   if (triangles.length < count * 9) throw new RangeError(`packWavefrontTriangles: ${triangles.length / 9} triangles for an order of ${count}`);
@@ -51,6 +69,7 @@ export function packWavefrontTriangles(triangles: Float32Array, order: Uint32Arr
     f[o + W.e2] = triangles[p + 6]! - x;
     f[o + W.e2 + 1] = triangles[p + 7]! - y;
     f[o + W.e2 + 2] = triangles[p + 8]! - z;
+    collapseNeedle(f, o);
     u[o + W.materialId] = materialIds ? materialIds[t]! : 0;
     u[o + W.meshIndex] = meshIndices ? meshIndices[t]! : 0;
     u[o + W.sourceIndex] = t;

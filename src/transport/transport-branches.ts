@@ -1,11 +1,11 @@
 import { GpuRendererError } from '../errors/gpu-renderer-error.ts';
 import { requireNumberInRange } from '../errors/validate.ts';
-import { fresnelDielectric } from './fresnel.ts';
+import { dielectricInterface } from './fresnel.ts';
 import { isMediumStack, type MediumStack } from './medium-stack.ts';
 
 /**
  * Reference split of a path at a dielectric boundary into at most two continuations, the bound the
- * GPU wavefront honours. Weights follow the exact dielectric Fresnel term (./fresnel.ts):
+ * GPU wavefront honours. Weights follow the exact dielectric Fresnel term (./fresnel.ts, shared with src/materials):
  *  - reflected:   F
  *  - transmitted: transmission * (1 - F)   (KHR_materials_transmission: the fraction of the light
  *    not reflected by the specular layer that passes through instead of reaching the diffuse base)
@@ -71,7 +71,7 @@ export function createTransportBranches(options: TransportBranchOptions): Transp
 
   const entering = stack.current !== mediumId;
   const eta = entering ? ior : 1 / ior;
-  const fr = fresnelDielectric(cosTheta, eta);
+  const fr = dielectricInterface(cosTheta, eta);
   const reflected: TransportBranch = Object.freeze({
     kind: 'reflection',
     weight: fr.reflectance,

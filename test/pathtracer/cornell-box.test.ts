@@ -22,6 +22,8 @@ async function render(seed: number, frames: number, sppPerFrame: number): Promis
       assert.equal(stats.invalidSamples, 0, 'no sample may be NaN, Inf or negative');
       assert.equal(stats.samplesAccumulated, (f + 1) * sppPerFrame);
       assert.equal(stats.rays.camera, size * size * sppPerFrame);
+      // Inside the closed box nearly every camera path scatters: the GPU-driven bounces really ran.
+      assert.ok(stats.rays.extension > stats.rays.camera && stats.rays.shadow > 0.5 * stats.rays.camera, JSON.stringify(stats.rays));
     }
     return (await renderer.readRadiance()).data;
   } finally {

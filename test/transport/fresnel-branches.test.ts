@@ -1,7 +1,7 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { createMediumStack } from '../../src/transport/medium-stack.ts';
-import { fresnelDielectric } from '../../src/transport/fresnel.ts';
+import { dielectricInterface } from '../../src/transport/fresnel.ts';
 import { createTransportBranches } from '../../src/transport/transport-branches.ts';
 import { GpuRendererError } from '../../src/errors/gpu-renderer-error.ts';
 
@@ -10,8 +10,8 @@ const close = (a: number, b: number, tol: number, message?: string): void => ass
 test('normal incidence reflectance is ((eta - 1) / (eta + 1))^2 from both sides', () => {
   for (const eta of [1.0, 1.33, 1.5, 2.4]) {
     const expected = ((eta - 1) / (eta + 1)) ** 2;
-    close(fresnelDielectric(1, eta).reflectance, expected, 1e-12, `entering eta=${eta}`);
-    close(fresnelDielectric(1, 1 / eta).reflectance, expected, 1e-12, `leaving eta=${eta}`);
+    close(dielectricInterface(1, eta).reflectance, expected, 1e-12, `entering eta=${eta}`);
+    close(dielectricInterface(1, 1 / eta).reflectance, expected, 1e-12, `leaving eta=${eta}`);
   }
 });
 
@@ -19,7 +19,7 @@ test('at Brewster angle the parallel term vanishes: F = Rs / 2 with Rs = ((eta^2
   const eta = 1.5;
   const thetaB = Math.atan(eta);
   const rs = ((eta * eta - 1) / (eta * eta + 1)) ** 2;
-  close(fresnelDielectric(Math.cos(thetaB), eta).reflectance, rs / 2, 1e-12);
+  close(dielectricInterface(Math.cos(thetaB), eta).reflectance, rs / 2, 1e-12);
 });
 
 test('total internal reflection starts at the critical angle asin(1 / ior)', () => {
@@ -54,7 +54,7 @@ test('lossless interface: reflected + transmitted weights sum to 1 at every angl
       assert.equal(b.baseWeight, 0);
     }
     const partial = createTransportBranches({ mediumStack: stack, mediumId: 9, transmission: 0.25, ior: 1.5, cosTheta });
-    const F = fresnelDielectric(cosTheta, 1.5).reflectance;
+    const F = dielectricInterface(cosTheta, 1.5).reflectance;
     close(partial.reflected.weight, F, 1e-15);
     close(partial.transmitted?.weight ?? 0, 0.25 * (1 - F), 1e-15);
     close(partial.reflected.weight + (partial.transmitted?.weight ?? 0) + partial.baseWeight, 1, 1e-12);
