@@ -1,15 +1,8 @@
 // Deterministic meshes and rays shared by the BVH tests (9 floats per triangle: v0, v1, v2).
+import { rng } from '../helpers/random.ts';
 
-/** mulberry32: small, fast, seedable. */
-export function rng(seed: number): () => number {
-  let s = seed | 0;
-  return () => {
-    s = (s + 0x6d2b79f5) | 0;
-    let t = Math.imul(s ^ (s >>> 15), 1 | s);
-    t = (t + Math.imul(t ^ (t >>> 7), 61 | t)) ^ t;
-    return ((t ^ (t >>> 14)) >>> 0) / 4294967296;
-  };
-}
+export { rng };
+
 
 /** Random triangles of random size scattered in a cube of side `extent`. */
 export function randomSoup(count: number, seed: number, extent = 10, size = 1): Float32Array {

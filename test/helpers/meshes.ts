@@ -31,14 +31,5 @@ export function icosphere(radius: number, center: readonly number[], subdivision
   return { positions: verts.flatMap((v) => v.map((c, i) => c * radius + center[i]!)), indices: faces.flat() };
 }
 
-/** A tiny deterministic PRNG (mulberry32) for test inputs. */
-export function rng(seed: number): () => number {
-  let a = seed >>> 0;
-  return () => {
-    a = (a + 0x6d2b79f5) >>> 0;
-    let t = a;
-    t = Math.imul(t ^ (t >>> 15), t | 1);
-    t ^= t + Math.imul(t ^ (t >>> 7), t | 61);
-    return ((t ^ (t >>> 14)) >>> 0) / 4294967296;
-  };
-}
+
+export { rng } from './random.ts';

@@ -1,3 +1,4 @@
+export { rng } from '../helpers/random.ts';
 // Shared plumbing for the glTF BSDF tests: runs small WGSL kernels that call the bsdf-gltf API on
 // arrays of inputs (real WebGPU, no mocks), plus the statistics the tests need.
 import { composeShader } from '../../src/shaders/modules.ts';
@@ -78,17 +79,6 @@ ${spec.body}
   return result;
 }
 
-/** Deterministic PRNG for test inputs (mulberry32). */
-export function rng(seed: number): () => number {
-  let a = seed >>> 0;
-  return () => {
-    a = (a + 0x6d2b79f5) >>> 0;
-    let t = a;
-    t = Math.imul(t ^ (t >>> 15), t | 1);
-    t ^= t + Math.imul(t ^ (t >>> 7), t | 61);
-    return ((t ^ (t >>> 14)) >>> 0) / 4294967296;
-  };
-}
 
 /** Uniform direction on the upper hemisphere with z >= zMin. */
 export function randomUpperDirection(random: () => number, zMin = 0.02): Vec3 {
