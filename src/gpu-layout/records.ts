@@ -170,6 +170,9 @@ export const queueCounterCount = 16;
 /** Bytes of one statistics record (the counter buffer) read back per frame. */
 export const rendererWavefrontComputeStatsStride = queueCounterCount * 4;
 
+/** Paths continuing to this depth or deeper play Russian roulette (pbrt-v4 survival rule). */
+export const russianRouletteStartDepth = 3;
+
 /** Workgroup size of every 1-D wavefront kernel. */
 export const rendererWavefrontComputeWorkgroupSize = 64;
 

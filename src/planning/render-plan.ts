@@ -1,6 +1,7 @@
 import { GpuRendererError } from '../errors/gpu-renderer-error.ts';
 import { requireInteger } from '../errors/validate.ts';
 import {
+  russianRouletteStartDepth,
   bvhNodeLayout,
   materialLayout,
   pathStateLayout,
@@ -221,7 +222,7 @@ export function createRayTracingRenderPlan(options: RayTracingRenderPlanOptions)
       termination: {
         completion: ['emissive', 'environment'],
         multipleImportanceSampling: 'power-heuristic',
-        russianRoulette: { startDepth: 3, survivalProbability: 'min(1, maxComponent(throughput * etaScale))' },
+        russianRoulette: { startDepth: russianRouletteStartDepth, survivalProbability: 'min(1, maxComponent(throughput * etaScale))' },
         maxDepth,
         maxDepthLimit: renderPlanMaxDepthLimit,
       },

@@ -18,6 +18,7 @@ export function createRecordsWgsl(): string {
     LIGHT_FLAG_DOUBLE_SIDED: records.LIGHT_FLAG_DOUBLE_SIDED,
     QUEUE_COUNTER_COUNT: records.queueCounterCount,
     WORKGROUP_SIZE: records.rendererWavefrontComputeWorkgroupSize,
+    RUSSIAN_ROULETTE_DEPTH: records.russianRouletteStartDepth,
   };
   for (const [name, slot] of Object.entries(records.queueCounterSlots)) {
     u32Constants[`COUNTER_${name.replace(/([A-Z])/g, '_$1').toUpperCase()}`] = slot;

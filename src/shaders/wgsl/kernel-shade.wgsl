@@ -1,9 +1,8 @@
 // Surface interaction of every path in the input queue (pbrt-v4 PathIntegrator::Li, wavefront form):
 // emission at the hit (MIS-weighted against light sampling), then at a scattering vertex one
 // next-event estimation sample (a shadow ray into the shadow queue) and one BSDF sample that
-// continues the path (Russian roulette after RUSSIAN_ROULETTE_DEPTH vertices).
-
-const RUSSIAN_ROULETTE_DEPTH: u32 = 3u;
+// continues the path (Russian roulette once the continuation reaches RUSSIAN_ROULETTE_DEPTH, a
+// constant generated from records.ts and published by the render plan).
 
 struct SurfaceHit {
   position: vec3f,
