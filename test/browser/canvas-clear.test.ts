@@ -2,59 +2,17 @@
 // createGpuRenderer on a canvas and the presented pixels must equal the clear colour.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { existsSync } from 'node:fs';
-import { fileURLToPath } from 'node:url';
 import { decode } from 'fast-png';
-import { builtPackageDir } from './built-package.ts';
-import { createImportMap } from './import-map.ts';
-import { startStaticServer } from './static-server.ts';
+import { chromiumSkip, openPackagePage } from './browser-session.ts';
 import type * as Pkg from '../../src/index.ts';
 
-const chromiumPath = '/usr/bin/chromium';
-const root = fileURLToPath(new URL('../..', import.meta.url));
-
-const page = (importMap: object): string => `<!doctype html>
-<html><head><meta charset="utf-8">
-<script type="importmap">${JSON.stringify(importMap)}</script>
-<style>html, body { margin: 0; background: #fff; } canvas { display: block; width: 64px; height: 48px; }</style>
-</head><body><canvas id="scene" width="64" height="48"></canvas>
-<script type="module">
-  import * as pkg from '/pkg/index.js';
-  window.pkg = pkg;
-  window.ready = true;
-</script></body></html>`;
-
-test('Chromium presents the clear colour on a WebGPU canvas; renderers can be recreated on it', { skip: existsSync(chromiumPath) ? false : `${chromiumPath} is not installed` }, async (t) => {
-  const { chromium } = await import('playwright-core');
-  const built = builtPackageDir(root);
-  t.after(() => built.cleanup());
-  const server = await startStaticServer({ root, packageDir: built.dir, page: page(createImportMap(root)) });
-  const browser = await chromium.launch({
-    executablePath: chromiumPath,
-    headless: true,
-    args: [
-      '--enable-unsafe-webgpu',
-      '--enable-features=Vulkan',
-      '--use-vulkan=swiftshader',
-      '--use-webgpu-adapter=swiftshader',
-      '--use-angle=swiftshader',
-      '--no-sandbox',
-      '--disable-gpu-sandbox',
-      '--disable-background-networking',
-      '--disable-component-update',
-      '--disable-sync',
-      '--no-first-run',
-    ],
+test('Chromium presents the clear colour on a WebGPU canvas; renderers can be recreated on it', { skip: chromiumSkip }, async (t) => {
+  const { tab, pageErrors, close } = await openPackagePage({
+    style: 'html, body { margin: 0; background: #fff; } canvas { display: block; width: 64px; height: 48px; }',
+    body: '<canvas id="scene" width="64" height="48"></canvas>',
+    viewport: { width: 200, height: 120 },
   });
-  t.after(async () => {
-    await browser.close();
-    await server.close();
-  });
-  const tab = await browser.newPage({ viewport: { width: 200, height: 120 }, deviceScaleFactor: 1 });
-  const pageErrors: string[] = [];
-  tab.on('pageerror', (e) => pageErrors.push(e.message));
-  await tab.goto(server.url);
-  await tab.waitForFunction(() => (window as unknown as { ready?: boolean }).ready === true, undefined, { timeout: 15000 });
+  t.after(close);
   assert.deepEqual(pageErrors, []);
   assert.equal(await tab.evaluate(() => (window as unknown as { pkg: { supportsWebGpu(): Promise<boolean> } }).pkg.supportsWebGpu()), true, 'Chromium exposes a WebGPU adapter');
 
