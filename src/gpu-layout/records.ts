@@ -118,7 +118,7 @@ export const frameUniformsLayout: StructLayout = defineStructLayout('FrameUnifor
   ['seed', 'u32'],
   ['queueCapacity', 'u32'],
   ['triangleCount', 'u32'],
-  ['rayEpsilon', 'f32', 'scene-scaled offset for spawned rays'],
+  ['rayEpsilon', 'f32', '1e-4 x scene radius; reserved (spawned rays use the ulp offset of offset_ray_origin)'],
   ['reserved', 'u32'],
 ]);
 

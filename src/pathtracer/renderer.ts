@@ -215,7 +215,6 @@ class WavefrontRenderer implements WavefrontPathTracingRenderer {
 
   private writeBounceUniforms(): void {
     const data = new ArrayBuffer(33 * dynamicUniformStride);
-    const view = new DataView(data);
     for (let d = 0; d <= 32; d++) {
       const even = d % 2 === 0;
       const slotView = new DataView(data, d * dynamicUniformStride, bounceUniformsLayout.size);
@@ -227,7 +226,6 @@ class WavefrontRenderer implements WavefrontPathTracingRenderer {
         outBase: even ? this.capacity : 0,
       });
     }
-    void view;
     this.device.queue.writeBuffer(this.resources.bounce, 0, data);
   }
 
