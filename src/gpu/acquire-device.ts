@@ -46,11 +46,7 @@ async function loadDawn(): Promise<GPU | undefined> {
 }
 
 export function describeAdapter(adapter: GPUAdapter): string {
-  const info = adapter.info as Partial<GPUAdapterInfo> | undefined;
-  const parts = [info?.vendor, info?.architecture, info?.device, info?.description].filter(
-    (p): p is string => typeof p === 'string' && p.length > 0,
-  );
-  return parts.length > 0 ? [...new Set(parts)].join(' / ') : 'unknown adapter';
+  return describeAdapterInfo(adapter.info as Partial<GPUAdapterInfo> | undefined, 'unknown adapter');
 }
 
 export async function acquireGpuDevice(options: AcquireGpuDeviceOptions = {}): Promise<AcquiredGpuDevice> {
@@ -59,7 +55,7 @@ export async function acquireGpuDevice(options: AcquireGpuDeviceOptions = {}): P
     return {
       device,
       ownsDevice: false,
-      adapterDescription: device.adapterInfo ? describeAdapterInfo(device.adapterInfo) : 'shared device',
+      adapterDescription: describeAdapterInfo(device.adapterInfo, 'shared device'),
       timestampQueries: device.features.has('timestamp-query'),
     };
   }
@@ -84,7 +80,9 @@ export async function acquireGpuDevice(options: AcquireGpuDeviceOptions = {}): P
   };
 }
 
-function describeAdapterInfo(info: GPUAdapterInfo): string {
-  const parts = [info.vendor, info.architecture, info.device, info.description].filter((p) => typeof p === 'string' && p.length > 0);
-  return parts.length > 0 ? [...new Set(parts)].join(' / ') : 'shared device';
+function describeAdapterInfo(info: Partial<GPUAdapterInfo> | undefined, fallback: string): string {
+  const parts = [info?.vendor, info?.architecture, info?.device, info?.description].filter(
+    (p): p is string => typeof p === 'string' && p.length > 0,
+  );
+  return parts.length > 0 ? [...new Set(parts)].join(' / ') : fallback;
 }

@@ -13,6 +13,8 @@ export interface EmissiveTriangleInput {
   v0: readonly number[];
   v1: readonly number[];
   v2: readonly number[];
+  /** Triangle area, as the caller computed it for the attribute records. */
+  area: number;
   emission: readonly number[];
   doubleSided: boolean;
 }
@@ -27,22 +29,16 @@ export interface EmissiveLightTable {
   totalPower: number;
 }
 
-function triangleArea(v0: readonly number[], v1: readonly number[], v2: readonly number[]): number {
-  const e1 = [v1[0]! - v0[0]!, v1[1]! - v0[1]!, v1[2]! - v0[2]!];
-  const e2 = [v2[0]! - v0[0]!, v2[1]! - v0[1]!, v2[2]! - v0[2]!];
-  const c = [e1[1]! * e2[2]! - e1[2]! * e2[1]!, e1[2]! * e2[0]! - e1[0]! * e2[2]!, e1[0]! * e2[1]! - e1[1]! * e2[0]!];
-  return 0.5 * Math.hypot(c[0]!, c[1]!, c[2]!);
-}
 
 /**
  * Emissive triangles chosen in proportion to their power (area x luminance, twice for two-sided
  * emitters) through an alias table. Zero-area or black triangles are never chosen.
  */
 export function buildEmissiveLightTable(lights: readonly EmissiveTriangleInput[]): EmissiveLightTable {
-  const usable = lights.filter((l) => triangleArea(l.v0, l.v1, l.v2) > 0 && luminance(l.emission) > 0);
+  const usable = lights.filter((l) => l.area > 0 && luminance(l.emission) > 0);
   const pmfByTriangle = new Map<number, number>();
   if (usable.length === 0) return { entries: allocateStructArray(lightEntryLayout, 1), count: 0, pmfByTriangle, totalPower: 0 };
-  const power = usable.map((l) => triangleArea(l.v0, l.v1, l.v2) * luminance(l.emission) * (l.doubleSided ? 2 : 1) * Math.PI);
+  const power = usable.map((l) => l.area * luminance(l.emission) * (l.doubleSided ? 2 : 1) * Math.PI);
   const table = buildAliasTable(power);
   const entries = allocateStructArray(lightEntryLayout, usable.length);
   const view = new DataView(entries);

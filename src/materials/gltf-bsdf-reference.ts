@@ -8,6 +8,8 @@
  * the viewer, wi towards the light.
  */
 
+import { luminance } from '../lighting/emissive-lights.ts';
+
 export type Vec3 = readonly [number, number, number];
 
 export interface GltfBsdfMaterial {
@@ -99,10 +101,6 @@ export function gltfBsdfEval(m: GltfBsdfMaterial, wo: Vec3, wi: Vec3): [number, 
     out[c] = (1 - m.metallic) * dielectricBrdf + m.metallic * metalBrdf;
   }
   return out;
-}
-
-function luminance(c: Vec3): number {
-  return 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2];
 }
 
 /** Probability that bsdf_sample picks the specular lobe at wo (Fresnel-weighted lobe reflectances). */

@@ -27,7 +27,7 @@ export interface WavefrontMeshAcceleration {
 const A = Object.fromEntries(triangleAttributesLayout.fields.map((f) => [f.name, f.offset / 4])) as Record<string, number>;
 const ATTR_WORDS = triangleAttributesLayout.size / 4;
 
-function packAttributes(source: WavefrontGpuMeshSource, order: Uint32Array, pmfBySlot: Map<number, number>): ArrayBuffer {
+function packAttributes(source: WavefrontGpuMeshSource, order: Uint32Array, areas: Float32Array, pmfBySlot: Map<number, number>): ArrayBuffer {
   const buffer = new ArrayBuffer(Math.max(1, order.length) * triangleAttributesLayout.size);
   const f = new Float32Array(buffer);
   const u = new Uint32Array(buffer);
@@ -44,7 +44,7 @@ function packAttributes(source: WavefrontGpuMeshSource, order: Uint32Array, pmfB
       f[uvAt + 1] = source.uvs[6 * t + 2 * c + 1]!;
     }
     f[o + A.lightPmf!] = pmfBySlot.get(s) ?? 0;
-    f[o + A.area!] = triangleArea(source.positions, t);
+    f[o + A.area!] = areas[t]!;
     u[o + A.flags!] = (source.hasNormals[t] ? TRIANGLE_FLAG_HAS_NORMALS : 0) | (source.hasUvs[t] ? TRIANGLE_FLAG_HAS_UVS : 0);
     u[o + A.geometricNormal!] = encodeOctahedralSnorm16(geometricNormal(source.positions, t));
     u[o + A.materialId!] = source.materialIds[t]!;
@@ -55,6 +55,8 @@ function packAttributes(source: WavefrontGpuMeshSource, order: Uint32Array, pmfB
 function finish(source: WavefrontGpuMeshSource, bvh: BvhBuildResult): WavefrontMeshAcceleration {
   const order = bvh.triangleOrder;
   const p = source.positions;
+  const areas = new Float32Array(source.triangleCount);
+  for (let t = 0; t < source.triangleCount; t++) areas[t] = triangleArea(p, t);
   const emissive = [];
   for (let s = 0; s < order.length; s++) {
     const t = order[s]!;
@@ -65,6 +67,7 @@ function finish(source: WavefrontGpuMeshSource, bvh: BvhBuildResult): WavefrontM
       v0: [p[9 * t]!, p[9 * t + 1]!, p[9 * t + 2]!],
       v1: [p[9 * t + 3]!, p[9 * t + 4]!, p[9 * t + 5]!],
       v2: [p[9 * t + 6]!, p[9 * t + 7]!, p[9 * t + 8]!],
+      area: areas[t]!,
       emission: material.emission,
       doubleSided: material.doubleSided,
     });
@@ -88,7 +91,7 @@ function finish(source: WavefrontGpuMeshSource, bvh: BvhBuildResult): WavefrontM
     buildTimeMs: bvh.buildTimeMs,
     triangleOrder: order,
     triangles: packWavefrontTriangles(p, order, { materialIds: source.materialIds, meshIndices: source.meshIndices }),
-    attributes: packAttributes(source, order, lights.pmfByTriangle),
+    attributes: packAttributes(source, order, areas, lights.pmfByTriangle),
     nodes: packWavefrontBvhNodes(bvh),
     lights,
     bounds: { min, max },

@@ -22,6 +22,7 @@ import { wavefrontBindingSlots, wavefrontKernels, type WavefrontBindingName, typ
 import { createPresentPipeline, createWavefrontPipelines, type WavefrontPipelines } from './pipelines.ts';
 import { checkWavefrontDeviceLimits, prepareWavefrontScene, validateWavefrontScene, wavefrontBufferPlan, type PreparedWavefrontScene } from './scene-preparation.ts';
 import { createWavefrontPathTracingComputeShaderSource } from './shader-source.ts';
+import { composeShader } from '../shaders/modules.ts';
 import type {
   WavefrontFrameStats,
   WavefrontMemoryStats,
@@ -273,7 +274,7 @@ class WavefrontRenderer implements WavefrontPathTracingRenderer {
     canvas.height = this.config.height;
     const format = preferredCanvasFormat();
     context.configure({ device: this.device, format, alphaMode: 'opaque' });
-    const { pipeline, layout } = await createPresentPipeline(this.device, createWavefrontPathTracingComputeShaderSource().present, format);
+    const { pipeline, layout } = await createPresentPipeline(this.device, composeShader(['kernel-present']), format);
     const bindGroup = this.device.createBindGroup({
       layout,
       entries: [
