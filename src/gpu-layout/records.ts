@@ -1,231 +1,361 @@
 import { defineStructLayout, type StructLayout } from './struct-layout.ts';
 
 /**
- * The GPU record contracts of the wavefront path tracer: the single source of truth for the WGSL
- * structs (generated from these layouts) and for every TypeScript packer and reader.
+ * The GPU record contracts of the renderer: the single source of truth for the WGSL structs
+ * (generated into the `package::layout::records` module) and for every TypeScript packer and
+ * reader. Records are grouped by the bind group that holds them (see bindings.ts).
  */
 
-/** One path in a wavefront queue; the extension kernel writes the closest hit into it. */
-export const pathStateLayout: StructLayout = defineStructLayout('PathState', 1, [
-  ['origin', 'vec3f'],
-  ['slot', 'u32', 'tile-local pixel slot the path contributes to'],
-  ['direction', 'vec3f', 'unit length'],
-  ['depth', 'u32', 'scattering vertices so far (pbrt-v4 depth)'],
-  ['throughput', 'vec3f', 'path weight beta'],
-  ['misPdf', 'f32', 'solid-angle pdf of the BSDF sample that made this ray; 0 = camera or delta lobe'],
-  ['hitT', 'f32', 'closest hit distance, or -1 on a miss'],
-  ['hitPrimitive', 'u32', 'primitive id: kind in the top 2 bits'],
-  ['hitU', 'f32', 'barycentric u of the hit'],
-  ['hitV', 'f32', 'barycentric v of the hit'],
-  ['etaScale', 'f32', 'accumulated eta^2 for Russian roulette across refraction'],
-  ['mediumId', 'u32', 'innermost medium (0 = none); nested media arrive with transmission'],
-  ['flags', 'u32', 'PATH_FLAG_* bits'],
-  ['reserved', 'u32'],
-]);
+// ---- Geometry (bind group 0, static) --------------------------------------------------------------
 
-/** An any-hit query carrying the contribution it adds if unoccluded (NEE, pbrt-v4 style). */
-export const shadowRayLayout: StructLayout = defineStructLayout('ShadowRay', 1, [
-  ['origin', 'vec3f'],
-  ['slot', 'u32'],
-  ['direction', 'vec3f'],
-  ['tMax', 'f32'],
-  ['radiance', 'vec3f', 'contribution added when the segment is unoccluded'],
-  ['reserved', 'u32'],
-]);
-
-/** Intersection data, kept compact for traversal (Moller-Trumbore form). */
-export const triangleLayout: StructLayout = defineStructLayout('Triangle', 1, [
+/**
+ * One traceable primitive in BVH order: a world-space triangle in Moller-Trumbore form, or an
+ * analytic shape (sphere: v0 = centre, e1.x = radius; box: v0 = min, e1 = max). `shape` packs the
+ * kind (PRIMITIVE_SHAPE_MASK), the alpha-tested flag and the alpha record index (see primitive-shape.ts).
+ */
+export const primitiveLayout: StructLayout = defineStructLayout('Primitive', 2, [
   ['v0', 'vec3f'],
-  ['materialId', 'u32'],
+  ['instance', 'u32', 'index into instances'],
   ['e1', 'vec3f', 'v1 - v0'],
-  ['meshIndex', 'u32'],
+  ['primitive', 'u32', 'triangle index within the instance mesh'],
   ['e2', 'vec3f', 'v2 - v0'],
-  ['sourceIndex', 'u32', 'triangle index before BVH reordering'],
-]);
-
-/** Shading data of a triangle, read only at hits. */
-export const triangleAttributesLayout: StructLayout = defineStructLayout('TriangleAttributes', 1, [
-  ['n0', 'vec3f'],
-  ['lightPmf', 'f32', 'probability that light sampling picks this triangle (0: not a light)'],
-  ['n1', 'vec3f'],
-  ['area', 'f32'],
-  ['n2', 'vec3f'],
-  ['flags', 'u32', 'TRIANGLE_FLAG_* bits'],
-  ['uv0', 'vec2f'],
-  ['uv1', 'vec2f'],
-  ['uv2', 'vec2f'],
-  ['geometricNormal', 'u32', 'unit cross(e1, e2), octahedral snorm16x2 (front face = CCW winding)'],
-  ['materialId', 'u32'],
+  ['shape', 'u32', 'kind | PRIMITIVE_FLAG_ALPHA | alpha record index << PRIMITIVE_ALPHA_SHIFT'],
 ]);
 
 /** Flattened BVH node: interior nodes keep both children adjacent at leftOrFirst, leftOrFirst + 1. */
 export const bvhNodeLayout: StructLayout = defineStructLayout('BvhNode', 1, [
   ['boundsMin', 'vec3f'],
-  ['leftOrFirst', 'u32', 'first child (interior) or first triangle (leaf)'],
+  ['leftOrFirst', 'u32', 'first child (interior) or first primitive (leaf)'],
   ['boundsMax', 'vec3f'],
   ['primitiveCount', 'u32', '0 for interior nodes'],
 ]);
 
-/** glTF metallic-roughness material; extension factors slot in at the reserved tail. */
-export const materialLayout: StructLayout = defineStructLayout('Material', 1, [
+/**
+ * What any-hit and closest-hit traversal need to alpha test a primitive whose material is MASK or
+ * BLEND: its three base-colour uvs (KHR_texture_transform already applied), vertex-colour alphas and
+ * the material's alpha terms.
+ */
+export const alphaPrimitiveLayout: StructLayout = defineStructLayout('AlphaPrimitive', 1, [
+  ['uv0', 'vec2f'],
+  ['uv1', 'vec2f'],
+  ['uv2', 'vec2f'],
+  ['alphaCutoff', 'f32', 'MASK threshold'],
+  ['alphaMode', 'u32', 'ALPHA_MODE_MASK or ALPHA_MODE_BLEND'],
+  ['vertexAlpha', 'vec3f', 'COLOR_0 alpha at the three vertices'],
+  ['alphaFactor', 'f32', 'baseColorFactor alpha'],
+  ['texture', 'u32', 'materials-heap offset of the base-colour TextureInfo, or INDEX_NONE'],
+  ['reserved0', 'u32'],
+  ['reserved1', 'u32'],
+  ['reserved2', 'u32'],
+]);
+
+/** A placement of a mesh: its object-to-world transform and where its streams start. */
+export const instanceLayout: StructLayout = defineStructLayout('Instance', 1, [
+  ['objectToWorld0', 'vec4f', 'row 0 of the affine 3x4 object-to-world matrix'],
+  ['objectToWorld1', 'vec4f', 'row 1'],
+  ['objectToWorld2', 'vec4f', 'row 2'],
+  ['normalToWorld0', 'vec4f', 'row 0 of the inverse transpose of the linear part'],
+  ['normalToWorld1', 'vec4f', 'row 1'],
+  ['normalToWorld2', 'vec4f', 'row 2'],
+  ['baseVertex', 'u32', 'first vertex of the mesh in vertices'],
+  ['firstIndex', 'u32', 'first index of the mesh in indices'],
+  ['material', 'u32', 'index of the MaterialCore record'],
+  ['flags', 'u32', 'INSTANCE_FLAG_* bits and the shape kind'],
+  ['lightBase', 'u32', 'light index of the mesh triangle 0 when the material emits, else INDEX_NONE'],
+  ['objectId', 'u32', 'user-facing instance id (AOVs)'],
+  ['reserved0', 'u32'],
+  ['reserved1', 'u32'],
+]);
+
+/** One vertex of the indexed vertex streams shared by every mesh (object space). */
+export const vertexLayout: StructLayout = defineStructLayout('Vertex', 1, [
+  ['position', 'vec3f'],
+  ['normal', 'u32', 'octahedral snorm16x2 (0 when the mesh has none)'],
+  ['tangent', 'u32', 'octahedral snorm16x2'],
+  ['color', 'u32', 'linear rgba unorm8x4 (COLOR_0)'],
+  ['uv0', 'vec2f'],
+  ['uv1', 'vec2f'],
+  ['flags', 'u32', 'VERTEX_FLAG_* bits (bitangent sign)'],
+  ['reserved', 'u32'],
+]);
+
+// ---- Materials and textures (bind group 1) --------------------------------------------------------
+
+/**
+ * The core of a glTF metallic-roughness material. Extension blocks and texture bindings live in the
+ * same vec4 heap (the `materials` binding) at the offsets (in vec4 units) stored here.
+ */
+export const materialCoreLayout: StructLayout = defineStructLayout('MaterialCore', 2, [
   ['baseColor', 'vec4f', 'linear RGB + alpha'],
   ['emission', 'vec3f', 'emissiveFactor * emissiveStrength'],
   ['metallic', 'f32'],
   ['roughness', 'f32', 'perceptual; alpha = roughness^2'],
   ['ior', 'f32', 'KHR_materials_ior'],
-  ['transmission', 'f32', 'KHR_materials_transmission (not yet shaded)'],
-  ['flags', 'u32', 'MATERIAL_FLAG_* bits'],
-  ['specularColor', 'vec3f', 'KHR_materials_specular (not yet shaded)'],
+  ['alphaCutoff', 'f32'],
+  ['flags', 'u32', 'MATERIAL_FLAG_* bits and the alpha mode'],
+  ['baseColorTexture', 'u32', 'TextureBinding heap offset or INDEX_NONE'],
+  ['metallicRoughnessTexture', 'u32'],
+  ['normalTexture', 'u32'],
+  ['emissiveTexture', 'u32'],
+  ['specular', 'u32', 'SpecularBlock heap offset or INDEX_NONE (KHR_materials_specular)'],
+  ['transmission', 'u32', 'extension block heap offset or INDEX_NONE'],
+  ['volume', 'u32'],
+  ['clearcoat', 'u32'],
+  ['sheen', 'u32'],
+  ['iridescence', 'u32'],
+  ['anisotropy', 'u32'],
+  ['diffuseTransmission', 'u32'],
+  ['dispersion', 'f32', 'KHR_materials_dispersion'],
+  ['reserved', 'u32'],
+]);
+
+/** A texture within the atlas: its mip chain occupies one block of one layer. */
+export const textureInfoLayout: StructLayout = defineStructLayout('TextureInfo', 1, [
+  ['origin', 'vec2u', 'texel origin of the mip-chain block in the layer'],
+  ['size', 'vec2u', 'level-0 size in texels'],
+  ['layer', 'u32'],
+  ['mipCount', 'u32'],
+  ['sampler', 'u32', 'wrap S/T, filters: SAMPLER_* fields'],
+  ['reserved', 'u32'],
+]);
+
+/** A material slot's use of a texture: which texture, which uv set, the KHR_texture_transform. */
+export const textureBindingLayout: StructLayout = defineStructLayout('TextureBinding', 1, [
+  ['transform0', 'vec3f', 'row 0 of the 2x3 uv transform (a, b, tx)'],
+  ['texture', 'u32', 'materials-heap offset of the TextureInfo'],
+  ['transform1', 'vec3f', 'row 1 (c, d, ty)'],
+  ['texCoord', 'u32', 'uv set, 0 or 1'],
+  ['scale', 'f32', 'normal map scale or occlusion strength'],
+  ['flags', 'u32', 'TEXTURE_BINDING_FLAG_SRGB'],
+  ['reserved0', 'u32'],
+  ['reserved1', 'u32'],
+]);
+
+/** KHR_materials_specular. */
+export const specularBlockLayout: StructLayout = defineStructLayout('SpecularBlock', 1, [
+  ['specularColor', 'vec3f', 'linear RGB'],
   ['specular', 'f32'],
+  ['specularTexture', 'u32', 'TextureBinding heap offset or INDEX_NONE (alpha channel)'],
+  ['specularColorTexture', 'u32', 'TextureBinding heap offset or INDEX_NONE (sRGB)'],
+  ['reserved0', 'u32'],
+  ['reserved1', 'u32'],
 ]);
 
-/** Analytic debug fixtures: a = center (sphere) or min (box); b.x = radius (sphere) or b = max (box). */
-export const sceneObjectLayout: StructLayout = defineStructLayout('SceneObject', 1, [
-  ['a', 'vec3f'],
-  ['kind', 'u32', 'SCENE_OBJECT_SPHERE or SCENE_OBJECT_BOX'],
-  ['b', 'vec3f'],
-  ['materialId', 'u32'],
-]);
+// ---- Lighting and the frame (bind group 2) --------------------------------------------------------
 
-/** Alias-table bin over emissive triangles (Walker/Vose), carrying the light's geometry. */
-export const lightEntryLayout: StructLayout = defineStructLayout('LightEntry', 1, [
+/**
+ * An emitter in the lights heap. Triangle lights (kind LIGHT_KIND_TRIANGLE) carry their world-space
+ * geometry and the alias-table bin that selects lights in proportion to power (Vose).
+ */
+export const lightRecordLayout: StructLayout = defineStructLayout('LightRecord', 2, [
   ['v0', 'vec3f'],
-  ['threshold', 'f32', 'keep this bin when u < threshold, else take aliasIndex'],
+  ['kind', 'u32', 'LIGHT_KIND_*'],
   ['e1', 'vec3f'],
-  ['aliasIndex', 'u32'],
+  ['flags', 'u32', 'LIGHT_FLAG_* bits'],
   ['e2', 'vec3f'],
-  ['triangle', 'u32', 'index into triangles/triangleAttributes; bit 31 = LIGHT_FLAG_DOUBLE_SIDED'],
-  ['emission', 'vec3f', 'emitted radiance of the front face'],
-  ['pmf', 'f32', 'probability of choosing this light'],
+  ['instance', 'u32', 'emitting instance (textured emission lookups)'],
+  ['emission', 'vec3f', 'emitted radiance (material factor; textures multiply it)'],
+  ['primitive', 'u32', 'emitting triangle within the instance mesh'],
+  ['pmf', 'f32', 'probability that light selection picks this light'],
+  ['aliasThreshold', 'f32', 'alias table: keep this bin when u < threshold'],
+  ['aliasIndex', 'u32'],
+  ['area', 'f32', 'world-space area'],
 ]);
 
-/** Per-render constants: camera, environment, scene extents. */
-export const frameUniformsLayout: StructLayout = defineStructLayout('FrameUniforms', 1, [
+/** Per-frame constants: camera, environment, lights and scene extents. */
+export const frameUniformsLayout: StructLayout = defineStructLayout('FrameUniforms', 2, [
   ['cameraPosition', 'vec3f'],
-  ['tanHalfFovY', 'f32'],
+  ['tanHalfFovY', 'f32', 'perspective: tan(fovY / 2)'],
   ['cameraRight', 'vec3f'],
   ['aspect', 'f32'],
   ['cameraUp', 'vec3f'],
-  ['lightCount', 'u32'],
+  ['cameraKind', 'u32', 'CAMERA_PERSPECTIVE or CAMERA_ORTHOGRAPHIC'],
   ['cameraForward', 'vec3f'],
-  ['sceneObjectCount', 'u32'],
-  ['environmentRadiance', 'vec3f'],
-  ['environmentSelectProbability', 'f32', 'probability NEE samples the environment instead of a triangle'],
+  ['orthographicHalfHeight', 'f32'],
+  ['environmentRadiance', 'vec3f', 'uniform environment radiance'],
+  ['environmentSelectProbability', 'f32', 'probability that NEE samples the environment'],
   ['sceneCenter', 'vec3f'],
   ['sceneRadius', 'f32'],
   ['imageSize', 'vec2u'],
   ['maxDepth', 'u32'],
   ['seed', 'u32'],
+  ['lightCount', 'u32'],
   ['queueCapacity', 'u32'],
-  ['triangleCount', 'u32'],
-  ['rayEpsilon', 'f32', '1e-4 x scene radius; reserved (spawned rays use the ulp offset of offset_ray_origin)'],
+  ['pixelSpreadAngle', 'f32', 'ray cone spread of one pixel (Akenine-Moller et al. 2019)'],
   ['reserved', 'u32'],
+]);
+
+// ---- Transport state (bind group 3, per dispatch) --------------------------------------------------
+
+/** The persistent state of one path (one pixel sample of the wave), indexed by its slot. */
+export const pathStateLayout: StructLayout = defineStructLayout('PathState', 2, [
+  ['throughput', 'vec3f', 'path weight beta'],
+  ['pixel', 'u32', 'global pixel index (y * width + x)'],
+  ['prevPosition', 'vec3f', 'last scattering vertex (the camera for camera rays)'],
+  ['misPdf', 'f32', 'solid-angle pdf of the BSDF sample that made the current ray; 0 = camera or delta'],
+  ['prevNormal', 'u32', 'octahedral geometric normal at prevPosition'],
+  ['sampleIndex', 'u32', 'index of this sample within the pixel sequence'],
+  ['depth', 'u32', 'scattering vertices so far (pbrt-v4 depth)'],
+  ['flags', 'u32', 'PATH_FLAG_* bits'],
+  ['etaScale', 'f32', 'accumulated eta^2 for Russian roulette across refraction'],
+  ['coneWidth', 'f32', 'ray cone width at prevPosition'],
+  ['coneSpread', 'f32', 'ray cone spread angle'],
+  ['media', 'u32', 'nested medium stack: four 8-bit medium ids, innermost in the low byte'],
+]);
+
+/** A ray waiting for closest-hit intersection; the ray queues are the two halves of `rays`. */
+export const rayWorkItemLayout: StructLayout = defineStructLayout('RayWorkItem', 1, [
+  ['origin', 'vec3f'],
+  ['slot', 'u32', 'path slot'],
+  ['direction', 'vec3f', 'unit length'],
+  ['tMax', 'f32'],
+]);
+
+/**
+ * Output of intersection: hits are appended from the front of the shading queue, misses (escaped
+ * rays) from the back, so one buffer holds both queues.
+ */
+export const shadingWorkItemLayout: StructLayout = defineStructLayout('ShadingWorkItem', 1, [
+  ['direction', 'vec3f'],
+  ['slot', 'u32'],
+  ['u', 'f32', 'barycentric of v1'],
+  ['v', 'f32', 'barycentric of v2'],
+  ['t', 'f32', 'hit distance'],
+  ['instance', 'u32'],
+  ['primitive', 'u32', 'triangle within the instance mesh'],
+  ['reserved0', 'u32'],
+  ['reserved1', 'u32'],
+  ['reserved2', 'u32'],
+]);
+
+/**
+ * The compact per-hit record material evaluation hands to the scatter kernel: the surface frame
+ * and the resolved BSDF parameters after texture fetches and normal mapping.
+ */
+export const surfaceRecordLayout: StructLayout = defineStructLayout('SurfaceRecord', 1, [
+  ['position', 'vec3f'],
+  ['slot', 'u32'],
+  ['wo', 'vec3f', 'unit direction towards the previous vertex'],
+  ['flags', 'u32', 'SURFACE_FLAG_* bits'],
+  ['ng', 'vec3f', 'unit geometric normal on the front (counter-clockwise) side'],
+  ['lightIndex', 'u32', 'light record of an emitting triangle, or INDEX_NONE'],
+  ['shadingNormal', 'u32', 'octahedral, front side'],
+  ['tangent', 'u32', 'octahedral, orthogonal to the shading normal'],
+  ['instance', 'u32'],
+  ['material', 'u32'],
+  ['emission', 'vec3f', 'emitted radiance towards wo (zero from a single-sided back face)'],
+  ['area', 'f32', 'world-space area of the hit triangle (0 for analytic shapes)'],
+  ['baseColor', 'vec3f'],
+  ['metallic', 'f32'],
+  ['roughness', 'f32'],
+  ['ior', 'f32'],
+  ['specular', 'f32', 'KHR_materials_specular factor'],
+  ['transmission', 'f32'],
+  ['specularColor', 'vec3f'],
+  ['hitDistance', 'f32'],
+]);
+
+/** An any-hit query carrying the contribution it adds if unoccluded (NEE, pbrt-v4 style). */
+export const shadowRayLayout: StructLayout = defineStructLayout('ShadowRay', 2, [
+  ['origin', 'vec3f'],
+  ['slot', 'u32'],
+  ['direction', 'vec3f'],
+  ['tMax', 'f32'],
+  ['contribution', 'vec3f', 'radiance added to the slot when the segment is unoccluded'],
+  ['reserved', 'u32'],
+]);
+
+/** What one path sample contributes: radiance plus the first non-specular hit's AOVs. */
+export const sampleRecordLayout: StructLayout = defineStructLayout('SampleRecord', 1, [
+  ['radiance', 'vec3f'],
+  ['aovWritten', 'u32', '1 once the first non-specular hit wrote the AOVs'],
+  ['albedo', 'vec3f'],
+  ['depth', 'f32', 'distance from the camera to the first hit'],
+  ['normal', 'vec3f', 'world shading normal'],
+  ['objectId', 'u32'],
 ]);
 
 /** Per-wave constants (one tile, one sample): bound with a dynamic offset. */
 export const waveUniformsLayout: StructLayout = defineStructLayout('WaveUniforms', 1, [
   ['tileOrigin', 'vec2u'],
   ['tileSize', 'vec2u'],
-  ['sampleIndex', 'u32', 'index of this sample within the pixel sequence'],
+  ['sampleIndex', 'u32', 'sample number every pixel of the tile takes in this wave'],
   ['reserved0', 'u32'],
   ['reserved1', 'u32'],
   ['reserved2', 'u32'],
 ]);
 
-/** Per-bounce constants: which half of the ping-pong path buffer is read and which is written. */
-export const bounceUniformsLayout: StructLayout = defineStructLayout('BounceUniforms', 1, [
+/** Per-bounce constants: which half of the ray buffer is read and which is written. */
+export const bounceUniformsLayout: StructLayout = defineStructLayout('BounceUniforms', 2, [
   ['depth', 'u32'],
-  ['inCounter', 'u32', 'counter slot holding the input queue length'],
-  ['outCounter', 'u32', 'counter slot receiving the output queue length'],
-  ['inBase', 'u32', 'first path index of the input queue'],
-  ['outBase', 'u32', 'first path index of the output queue'],
+  ['inCounter', 'u32', 'counter slot holding the input ray queue length'],
+  ['outCounter', 'u32', 'counter slot receiving the output ray queue length'],
+  ['inBase', 'u32', 'first index of the input ray queue in rays'],
+  ['outBase', 'u32', 'first index of the output ray queue in rays'],
+  ['reserved0', 'u32'],
+  ['reserved1', 'u32'],
+  ['reserved2', 'u32'],
 ]);
 
 /** Display resolve constants. */
 export const resolveUniformsLayout: StructLayout = defineStructLayout('ResolveUniforms', 1, [
   ['imageSize', 'vec2u'],
-  ['toneMapping', 'u32', 'TONE_MAPPING_* of tonemap.wgsl'],
+  ['toneMapping', 'u32', 'TONE_MAPPING_* id'],
   ['exposure', 'f32'],
 ]);
 
-/**
- * Slots of the u32 counter buffer (atomics in WGSL). Queue lengths first, then per-render statistics.
- */
-export const queueCounterSlots = {
-  pathCount0: 0,
-  pathCount1: 1,
-  shadowCount: 2,
-  cameraRays: 3,
-  extensionRays: 4,
-  shadowRays: 5,
-  escapedPaths: 6,
-  russianRouletteTerminations: 7,
-  maxDepthTerminations: 8,
-  invalidSamples: 9,
-  emitterHits: 10,
-} as const;
-
-export const queueCounterCount = 16;
-
-/** Bytes of one statistics record (the counter buffer) read back per frame. */
-export const rendererWavefrontComputeStatsStride = queueCounterCount * 4;
-
-/** Paths continuing to this depth or deeper play Russian roulette (pbrt-v4 survival rule). */
-export const russianRouletteStartDepth = 3;
-
-/** Workgroup size of every 1-D wavefront kernel. */
-export const rendererWavefrontComputeWorkgroupSize = 64;
-
-/** Uniform slots bound with dynamic offsets must sit on this alignment (WebGPU's guaranteed minimum). */
-export const dynamicUniformStride = 256;
-
-export const PRIMITIVE_KIND_TRIANGLE = 0;
-export const PRIMITIVE_KIND_SPHERE = 1;
-export const PRIMITIVE_KIND_BOX = 2;
-export const PRIMITIVE_NONE = 0xffffffff;
-export const SCENE_OBJECT_SPHERE = 1;
-export const SCENE_OBJECT_BOX = 2;
-export const MATERIAL_FLAG_DOUBLE_SIDED = 1;
-export const TRIANGLE_FLAG_HAS_NORMALS = 1;
-export const TRIANGLE_FLAG_HAS_UVS = 2;
-export const PATH_FLAG_SPECULAR_BOUNCE = 1;
-export const LIGHT_FLAG_DOUBLE_SIDED = 0x80000000;
-
 /** Every record layout, by WGSL struct name. */
 export const wavefrontRecordLayouts = {
-  PathState: pathStateLayout,
-  ShadowRay: shadowRayLayout,
-  Triangle: triangleLayout,
-  TriangleAttributes: triangleAttributesLayout,
+  Primitive: primitiveLayout,
   BvhNode: bvhNodeLayout,
-  Material: materialLayout,
-  SceneObject: sceneObjectLayout,
-  LightEntry: lightEntryLayout,
+  AlphaPrimitive: alphaPrimitiveLayout,
+  Instance: instanceLayout,
+  Vertex: vertexLayout,
+  MaterialCore: materialCoreLayout,
+  TextureInfo: textureInfoLayout,
+  TextureBinding: textureBindingLayout,
+  SpecularBlock: specularBlockLayout,
+  LightRecord: lightRecordLayout,
   FrameUniforms: frameUniformsLayout,
+  PathState: pathStateLayout,
+  RayWorkItem: rayWorkItemLayout,
+  ShadingWorkItem: shadingWorkItemLayout,
+  SurfaceRecord: surfaceRecordLayout,
+  ShadowRay: shadowRayLayout,
+  SampleRecord: sampleRecordLayout,
   WaveUniforms: waveUniformsLayout,
   BounceUniforms: bounceUniformsLayout,
   ResolveUniforms: resolveUniformsLayout,
+} as const;
+
+/** Records stored in vec4 heaps get generated WGSL loaders (`load_<snake name>(heap offset)`). */
+export const heapRecordLayouts = {
+  materials: [materialCoreLayout, textureInfoLayout, textureBindingLayout, specularBlockLayout],
 } as const;
 
 /** GPU record sizes in bytes (the mirrored package's "GPU record-size constants"). */
 export const rendererWavefrontRecordSizes = {
   pathState: pathStateLayout.size,
   shadowRay: shadowRayLayout.size,
-  triangle: triangleLayout.size,
-  triangleAttributes: triangleAttributesLayout.size,
+  rayWorkItem: rayWorkItemLayout.size,
+  shadingWorkItem: shadingWorkItemLayout.size,
+  surfaceRecord: surfaceRecordLayout.size,
+  sampleRecord: sampleRecordLayout.size,
+  primitive: primitiveLayout.size,
+  vertex: vertexLayout.size,
+  instance: instanceLayout.size,
   bvhNode: bvhNodeLayout.size,
-  material: materialLayout.size,
-  sceneObject: sceneObjectLayout.size,
-  lightEntry: lightEntryLayout.size,
+  materialCore: materialCoreLayout.size,
+  lightRecord: lightRecordLayout.size,
   accumulationTexel: 16,
 } as const;
 
 export const rendererWavefrontPathStateBytes = pathStateLayout.size;
 export const rendererWavefrontShadowRayBytes = shadowRayLayout.size;
-export const rendererWavefrontTriangleBytes = triangleLayout.size;
-export const rendererWavefrontTriangleAttributesBytes = triangleAttributesLayout.size;
+export const rendererWavefrontPrimitiveBytes = primitiveLayout.size;
+export const rendererWavefrontVertexBytes = vertexLayout.size;
+export const rendererWavefrontInstanceBytes = instanceLayout.size;
 export const rendererWavefrontBvhNodeBytes = bvhNodeLayout.size;
-export const rendererWavefrontMaterialBytes = materialLayout.size;
-export const rendererWavefrontSceneObjectBytes = sceneObjectLayout.size;
-export const rendererWavefrontLightEntryBytes = lightEntryLayout.size;
+export const rendererWavefrontMaterialBytes = materialCoreLayout.size;
+export const rendererWavefrontLightRecordBytes = lightRecordLayout.size;
 export const rendererWavefrontAccumulationTexelBytes = 16;

@@ -1,0 +1,73 @@
+/**
+ * Every resource binding of the path tracer, in bind groups ordered by update frequency (static
+ * geometry; materials and textures; per-frame camera, lights and environment; per-dispatch
+ * transport state). The WGSL declarations (`package::layout::bindings`) are generated from this
+ * table; a kernel imports the bindings it uses, and the build reflects which ones survived linking,
+ * so pipeline layouts are derived, never listed by hand.
+ */
+
+export const bindGroupIndices = {
+  geometry: 0,
+  materials: 1,
+  frame: 2,
+  transport: 3,
+} as const;
+
+export type BindGroupName = keyof typeof bindGroupIndices;
+
+export type BindingKind =
+  | { kind: 'uniform'; type: string; dynamic?: boolean }
+  | { kind: 'storage'; type: string; access: 'read' | 'read_write' }
+  | { kind: 'texture'; type: string; sampleType: GPUTextureSampleType; viewDimension: GPUTextureViewDimension };
+
+/** `group` is a bind group index (the path tracer uses bindGroupIndices). */
+export type BindingSpec = { group: number; binding: number; doc: string } & BindingKind;
+
+const G = bindGroupIndices;
+
+export const pathTracerBindings = {
+  // Group 0: geometry, uploaded once per scene.
+  primitives: { group: G.geometry, binding: 0, kind: 'storage', access: 'read', type: 'array<Primitive>', doc: 'traceable primitives in BVH order' },
+  bvhNodes: { group: G.geometry, binding: 1, kind: 'storage', access: 'read', type: 'array<BvhNode>', doc: 'flattened binary BVH' },
+  bvhParents: { group: G.geometry, binding: 2, kind: 'storage', access: 'read', type: 'array<u32>', doc: 'parent of every BVH node (root: INDEX_NONE), for stackless traversal' },
+  alphaPrimitives: { group: G.geometry, binding: 3, kind: 'storage', access: 'read', type: 'array<AlphaPrimitive>', doc: 'alpha-test data of MASK and BLEND primitives' },
+  instances: { group: G.geometry, binding: 4, kind: 'storage', access: 'read', type: 'array<Instance>', doc: 'mesh placements' },
+  indices: { group: G.geometry, binding: 5, kind: 'storage', access: 'read', type: 'array<u32>', doc: 'triangle lists of every mesh' },
+  vertices: { group: G.geometry, binding: 6, kind: 'storage', access: 'read', type: 'array<Vertex>', doc: 'indexed vertex streams of every mesh' },
+  // Group 1: materials and textures.
+  materials: { group: G.materials, binding: 0, kind: 'storage', access: 'read', type: 'array<vec4f>', doc: 'material heap: cores, extension blocks, texture bindings, texture infos' },
+  textureAtlas: { group: G.materials, binding: 1, kind: 'texture', type: 'texture_2d_array<f32>', sampleType: 'unfilterable-float', viewDimension: '2d-array', doc: 'every material texture with its mip chain (rgba8unorm)' },
+  // Group 2: per frame.
+  frame: { group: G.frame, binding: 0, kind: 'uniform', type: 'FrameUniforms', doc: 'camera, environment, lights, scene extents' },
+  lights: { group: G.frame, binding: 1, kind: 'storage', access: 'read', type: 'array<LightRecord>', doc: 'emitters with their selection alias table' },
+  // Group 3: transport state, per dispatch.
+  paths: { group: G.transport, binding: 0, kind: 'storage', access: 'read_write', type: 'array<PathState>', doc: 'state of every path of the wave' },
+  rays: { group: G.transport, binding: 1, kind: 'storage', access: 'read_write', type: 'array<RayWorkItem>', doc: 'two ray queues (ping-pong halves)' },
+  shadingQueue: { group: G.transport, binding: 2, kind: 'storage', access: 'read_write', type: 'array<ShadingWorkItem>', doc: 'hits from the front, escaped rays from the back' },
+  surfaces: { group: G.transport, binding: 3, kind: 'storage', access: 'read_write', type: 'array<SurfaceRecord>', doc: 'evaluated materials, one per hit' },
+  shadowRays: { group: G.transport, binding: 4, kind: 'storage', access: 'read_write', type: 'array<ShadowRay>', doc: 'next-event estimation queries' },
+  counters: { group: G.transport, binding: 5, kind: 'storage', access: 'read_write', type: 'array<atomic<u32>, QUEUE_COUNTER_COUNT>', doc: 'queue lengths and statistics' },
+  samples: { group: G.transport, binding: 6, kind: 'storage', access: 'read_write', type: 'array<SampleRecord>', doc: 'radiance and AOVs of every path sample' },
+  film: { group: G.transport, binding: 7, kind: 'storage', access: 'read_write', type: 'array<vec4f>', doc: 'full-frame accumulation: radiance sum, sample count' },
+  dispatchArgs: { group: G.transport, binding: 8, kind: 'storage', access: 'read_write', type: 'array<u32>', doc: 'indirect dispatch arguments written from queue lengths' },
+  wave: { group: G.transport, binding: 9, kind: 'uniform', dynamic: true, type: 'WaveUniforms', doc: 'per-wave constants' },
+  bounce: { group: G.transport, binding: 10, kind: 'uniform', dynamic: true, type: 'BounceUniforms', doc: 'per-bounce constants' },
+} as const satisfies Record<string, BindingSpec>;
+
+export type PathTracerBindingName = keyof typeof pathTracerBindings;
+
+/** The generated WGSL declaration of one binding. */
+export function bindingDeclaration(name: string, spec: BindingSpec): string {
+  const at = `@group(${spec.group}) @binding(${spec.binding})`;
+  const comment = `// ${spec.doc}`;
+  if (spec.kind === 'uniform') return `${comment}\n${at} var<uniform> ${name}: ${spec.type};`;
+  if (spec.kind === 'storage') return `${comment}\n${at} var<storage, ${spec.access}> ${name}: ${spec.type};`;
+  return `${comment}\n${at} var ${name}: ${spec.type};`;
+}
+
+/** The WebGPU layout entry of one binding (compute visibility unless given). */
+export function bindingLayoutEntry(spec: BindingSpec, visibility: number): GPUBindGroupLayoutEntry {
+  if (spec.kind === 'uniform') return { binding: spec.binding, visibility, buffer: { type: 'uniform', hasDynamicOffset: spec.dynamic === true } };
+  if (spec.kind === 'storage') return { binding: spec.binding, visibility, buffer: { type: spec.access === 'read' ? 'read-only-storage' : 'storage' } };
+  return { binding: spec.binding, visibility, texture: { sampleType: spec.sampleType, viewDimension: spec.viewDimension } };
+}

@@ -1,0 +1,173 @@
+/**
+ * Constants shared by TypeScript and WGSL: the single definition of every slot number, flag bit,
+ * kind id and size both sides must agree on. The `package::layout::constants` WGSL module is
+ * generated from `gpuConstants` (see shaders/layout-modules.ts), so nothing is kept equal by comment.
+ */
+
+/** Slots of the u32 counter buffer (atomics in WGSL): queue lengths first, then statistics. */
+export const queueCounterSlots = {
+  rayCount0: 0,
+  rayCount1: 1,
+  hitCount: 2,
+  missCount: 3,
+  shadowCount: 4,
+  cameraRays: 5,
+  extensionRays: 6,
+  shadowRays: 7,
+  escapedPaths: 8,
+  russianRouletteTerminations: 9,
+  maxDepthTerminations: 10,
+  invalidSamples: 11,
+  emitterHits: 12,
+  absorbedPaths: 13,
+  invalidBsdfSamples: 14,
+  traversalFallbacks: 15,
+} as const;
+
+export type QueueCounterName = keyof typeof queueCounterSlots;
+
+export const queueCounterCount = 32;
+
+/** Bytes of one statistics record (the counter buffer) read back per frame. */
+export const rendererWavefrontComputeStatsStride = queueCounterCount * 4;
+
+/** Offsets (in u32) of the indirect dispatch argument triples in the dispatchArgs buffer. */
+export const dispatchArgSlots = {
+  intersect: 0,
+  hits: 4,
+  misses: 8,
+  shadows: 12,
+} as const;
+export const dispatchArgWords = 16;
+
+/** Paths continuing to this depth or deeper play Russian roulette (pbrt-v4 survival rule). */
+export const russianRouletteStartDepth = 3;
+
+/** Workgroup size of every 1-D wavefront kernel. */
+export const rendererWavefrontComputeWorkgroupSize = 64;
+
+/** Uniform slots bound with dynamic offsets sit on this alignment (WebGPU's guaranteed minimum). */
+export const dynamicUniformStride = 256;
+
+/**
+ * Entries of the BVH traversal stack: one push per level, so every tree of depth <= this (every
+ * tree the CPU builder makes, BVH_MAX_DEPTH = 48) traverses with the stack alone. A deeper tree
+ * (another builder's) does not lose geometry: a ray that would overflow the stack restarts from
+ * the root in stackless mode, walking parent links (counted in `traversalFallbacks`).
+ */
+export const bvhTraversalStackSize = 48;
+
+export const INDEX_NONE = 0xffffffff;
+
+export const PRIMITIVE_SHAPE_TRIANGLE = 0;
+export const PRIMITIVE_SHAPE_SPHERE = 1;
+export const PRIMITIVE_SHAPE_BOX = 2;
+export const PRIMITIVE_SHAPE_MASK = 3;
+export const PRIMITIVE_FLAG_ALPHA = 4;
+export const PRIMITIVE_ALPHA_SHIFT = 3;
+
+export const INSTANCE_FLAG_NEGATIVE_DETERMINANT = 1 << 2;
+export const INSTANCE_FLAG_HAS_NORMALS = 1 << 3;
+export const INSTANCE_FLAG_HAS_TANGENTS = 1 << 4;
+export const INSTANCE_FLAG_HAS_UV0 = 1 << 5;
+export const INSTANCE_FLAG_HAS_UV1 = 1 << 6;
+export const INSTANCE_FLAG_HAS_COLORS = 1 << 7;
+
+export const VERTEX_FLAG_BITANGENT_NEGATIVE = 1;
+
+export const MATERIAL_FLAG_DOUBLE_SIDED = 1;
+export const MATERIAL_ALPHA_MODE_SHIFT = 1;
+export const MATERIAL_ALPHA_MODE_MASK = 3 << 1;
+export const ALPHA_MODE_OPAQUE = 0;
+export const ALPHA_MODE_MASK = 1;
+export const ALPHA_MODE_BLEND = 2;
+
+export const TEXTURE_BINDING_FLAG_SRGB = 1;
+
+/** TextureInfo.sampler bit fields. */
+export const SAMPLER_WRAP_REPEAT = 0;
+export const SAMPLER_WRAP_CLAMP = 1;
+export const SAMPLER_WRAP_MIRROR = 2;
+export const SAMPLER_WRAP_S_SHIFT = 0;
+export const SAMPLER_WRAP_T_SHIFT = 2;
+/** Bit set: magnification filter is linear. */
+export const SAMPLER_MAG_LINEAR = 1 << 4;
+/** Bit set: minification within a level is linear. */
+export const SAMPLER_MIN_LINEAR = 1 << 5;
+/** Bit set: mip levels are used at all. */
+export const SAMPLER_MIPMAPS = 1 << 6;
+/** Bit set: blend between two mip levels. */
+export const SAMPLER_MIP_LINEAR = 1 << 7;
+
+export const LIGHT_KIND_TRIANGLE = 0;
+export const LIGHT_FLAG_DOUBLE_SIDED = 1;
+export const LIGHT_FLAG_TEXTURED = 2;
+
+export const CAMERA_PERSPECTIVE = 0;
+export const CAMERA_ORTHOGRAPHIC = 1;
+
+export const PATH_FLAG_SPECULAR_BOUNCE = 1;
+
+export const SURFACE_FLAG_FRONT_FACE = 1;
+export const SURFACE_FLAG_DOUBLE_SIDED = 2;
+export const SURFACE_FLAG_ANALYTIC = 4;
+
+export const TONE_MAPPING_NEUTRAL = 0;
+export const TONE_MAPPING_ACES = 1;
+export const TONE_MAPPING_LINEAR = 2;
+
+/** Every constant the WGSL side sees, by its WGSL name (all u32). */
+export const gpuConstants: Readonly<Record<string, number>> = Object.freeze({
+  QUEUE_COUNTER_COUNT: queueCounterCount,
+  WORKGROUP_SIZE: rendererWavefrontComputeWorkgroupSize,
+  RUSSIAN_ROULETTE_DEPTH: russianRouletteStartDepth,
+  BVH_STACK_SIZE: bvhTraversalStackSize,
+  INDEX_NONE,
+  PRIMITIVE_SHAPE_TRIANGLE,
+  PRIMITIVE_SHAPE_SPHERE,
+  PRIMITIVE_SHAPE_BOX,
+  PRIMITIVE_SHAPE_MASK,
+  PRIMITIVE_FLAG_ALPHA,
+  PRIMITIVE_ALPHA_SHIFT,
+  INSTANCE_FLAG_NEGATIVE_DETERMINANT,
+  INSTANCE_FLAG_HAS_NORMALS,
+  INSTANCE_FLAG_HAS_TANGENTS,
+  INSTANCE_FLAG_HAS_UV0,
+  INSTANCE_FLAG_HAS_UV1,
+  INSTANCE_FLAG_HAS_COLORS,
+  VERTEX_FLAG_BITANGENT_NEGATIVE,
+  MATERIAL_FLAG_DOUBLE_SIDED,
+  MATERIAL_ALPHA_MODE_SHIFT,
+  MATERIAL_ALPHA_MODE_MASK,
+  ALPHA_MODE_OPAQUE,
+  ALPHA_MODE_MASK,
+  ALPHA_MODE_BLEND,
+  TEXTURE_BINDING_FLAG_SRGB,
+  SAMPLER_WRAP_REPEAT,
+  SAMPLER_WRAP_CLAMP,
+  SAMPLER_WRAP_MIRROR,
+  SAMPLER_WRAP_S_SHIFT,
+  SAMPLER_WRAP_T_SHIFT,
+  SAMPLER_MAG_LINEAR,
+  SAMPLER_MIN_LINEAR,
+  SAMPLER_MIPMAPS,
+  SAMPLER_MIP_LINEAR,
+  LIGHT_KIND_TRIANGLE,
+  LIGHT_FLAG_DOUBLE_SIDED,
+  LIGHT_FLAG_TEXTURED,
+  CAMERA_PERSPECTIVE,
+  CAMERA_ORTHOGRAPHIC,
+  PATH_FLAG_SPECULAR_BOUNCE,
+  SURFACE_FLAG_FRONT_FACE,
+  SURFACE_FLAG_DOUBLE_SIDED,
+  SURFACE_FLAG_ANALYTIC,
+  TONE_MAPPING_NEUTRAL,
+  TONE_MAPPING_ACES,
+  TONE_MAPPING_LINEAR,
+  ...Object.fromEntries(Object.entries(queueCounterSlots).map(([name, slot]) => [`COUNTER_${snakeUpper(name)}`, slot])),
+  ...Object.fromEntries(Object.entries(dispatchArgSlots).map(([name, slot]) => [`DISPATCH_ARGS_${snakeUpper(name)}`, slot])),
+});
+
+function snakeUpper(name: string): string {
+  return name.replace(/([A-Z])/g, '_$1').toUpperCase();
+}

@@ -1,0 +1,19 @@
+/**
+ * Pipeline specialisation: WGSL `override` constants (generated into `package::layout::features`).
+ * A scene without a feature compiles its kernels with the feature off, so the shader compiler
+ * removes that code and the scene does not pay for it; the output is identical either way (tests
+ * render with features forced on and off).
+ */
+export const shaderFeatures = {
+  FEATURE_ANALYTIC_SHAPES: { default: true, doc: 'spheres and boxes among the primitives' },
+  FEATURE_ALPHA_TEST: { default: true, doc: 'MASK or BLEND primitives: traversal alpha-tests candidate hits' },
+  FEATURE_TEXTURES: { default: true, doc: 'materials sample the texture atlas' },
+  FEATURE_EMISSIVE_LIGHTS: { default: true, doc: 'emissive triangles are sampled by next-event estimation' },
+  FEATURE_ENVIRONMENT: { default: true, doc: 'a non-black environment lights the scene' },
+  FEATURE_AOVS: { default: true, doc: 'the first non-specular hit writes albedo, normal and depth' },
+} as const;
+
+export type ShaderFeatureName = keyof typeof shaderFeatures;
+export type ShaderFeatures = Record<ShaderFeatureName, boolean>;
+
+export const allShaderFeatures: ShaderFeatures = Object.fromEntries(Object.keys(shaderFeatures).map((k) => [k, true])) as ShaderFeatures;

@@ -1,0 +1,27 @@
+/**
+ * Every GPU program the package ships: a root WESL module (path under src/, `::`-separated, as in
+ * `import` statements) and its entry points. `npm run generate` links each program with the WESL
+ * linker, reflects the bindings and `override` constants that survive linking, and writes
+ * programs.generated.ts, which the runtime reads.
+ */
+export interface ProgramSpec {
+  /** Root module, e.g. `package::pathtracer::kernels::intersect`. */
+  readonly module: string;
+  /** Which binding table the program's bindings come from. */
+  readonly bindings: 'pathTracer' | 'display';
+}
+
+export const programSpecs = {
+  camera: { module: 'package::pathtracer::kernels::camera', bindings: 'pathTracer' },
+  prepare: { module: 'package::pathtracer::kernels::prepare', bindings: 'pathTracer' },
+  intersect: { module: 'package::pathtracer::kernels::intersect', bindings: 'pathTracer' },
+  escaped: { module: 'package::pathtracer::kernels::escaped', bindings: 'pathTracer' },
+  evaluateMaterials: { module: 'package::pathtracer::kernels::evaluate_materials', bindings: 'pathTracer' },
+  scatter: { module: 'package::pathtracer::kernels::scatter', bindings: 'pathTracer' },
+  shadow: { module: 'package::pathtracer::kernels::shadow', bindings: 'pathTracer' },
+  accumulate: { module: 'package::pathtracer::kernels::accumulate', bindings: 'pathTracer' },
+  resolve: { module: 'package::post::display::resolve', bindings: 'display' },
+  present: { module: 'package::post::display::present', bindings: 'display' },
+} as const satisfies Record<string, ProgramSpec>;
+
+export type ProgramName = keyof typeof programSpecs;
