@@ -1,14 +1,16 @@
 /**
- * JavaScript mirror of `bvh-traversal.wgsl` over the same packed buffers (triangles in
- * `triangleLayout`, nodes in `bvhNodeLayout`), for tests and tools: closest hit with Moller-Trumbore
- * exactly as `intersect.wgsl` writes it (two-sided, det threshold 1e-20, t in (0, tMax)), any-hit
- * that stops at the first occluder, and brute force over every triangle as the ground truth.
- * Arithmetic is in doubles on the stored f32 data, so it agrees with the GPU up to f32 rounding.
+ * JavaScript mirror of `bvh-traversal.wesl` over the same packed buffers (triangle primitives in
+ * `primitiveLayout`, nodes in `bvhNodeLayout`), for tests and tools: closest hit with
+ * Moller-Trumbore exactly as `intersect.wesl` writes it (two-sided, det threshold 1e-20, t in
+ * (0, tMax)), any-hit that stops at the first occluder, and brute force over every triangle as the
+ * ground truth. Arithmetic is in doubles on the stored f32 data, so it agrees with the GPU up to f32
+ * rounding. The JS stack is unbounded: a reference has no stack to overflow.
  */
-import { triangleLayout } from '../gpu-layout/records.ts';
+import { primitiveLayout } from '../gpu-layout/records.ts';
 
-const TRI_WORDS = triangleLayout.size / 4;
-const STACK_SIZE = 64;
+const TRI_WORDS = primitiveLayout.size / 4;
+/** Word of the record's `primitive` field: the triangle's index within its mesh. */
+const SOURCE_WORD = 7;
 
 export interface ReferenceRay {
   origin: ArrayLike<number>;
@@ -19,16 +21,16 @@ export interface ReferenceRay {
 
 export interface ReferenceHit {
   t: number;
-  /** BVH slot of the triangle (what the GPU reports in the low 30 bits of `primitive`). */
+  /** BVH slot of the triangle. */
   slot: number;
-  /** Original triangle index (the record's sourceIndex). */
+  /** The record's `primitive`: the original triangle index for a single mesh. */
   sourceIndex: number;
   u: number;
   v: number;
 }
 
 export interface ReferenceScene {
-  /** Packed `triangleLayout` records in BVH order. */
+  /** Packed `primitiveLayout` triangle records in BVH order. */
   triangles: ArrayBuffer;
   triangleCount: number;
   /** Packed `bvhNodeLayout` records; node 0 is the root. */
@@ -93,7 +95,7 @@ export function traceClosestReference(scene: ReferenceScene, ray: ReferenceRay):
   let best = -1;
   let bu = 0, bv = 0;
   const hit = new Float64Array(3);
-  const stack = new Uint32Array(STACK_SIZE);
+  const stack: number[] = [];
   let sp = 0;
   if (enterBox(nf, 0, o, ix, iy, iz, tBest) === Infinity) return null;
   let node = 0;
@@ -121,13 +123,12 @@ export function traceClosestReference(scene: ReferenceScene, ray: ReferenceRay):
     } else if (ta === Infinity) node = first + 1;
     else if (tb === Infinity) node = first;
     else {
-      if (sp >= STACK_SIZE) throw new Error('traceClosestReference: stack overflow (BVH deeper than the GPU stack allows)');
       stack[sp++] = ta <= tb ? first + 1 : first;
       node = ta <= tb ? first : first + 1;
     }
   }
   if (best < 0) return null;
-  return { t: tBest, slot: best, sourceIndex: tu[best * TRI_WORDS + 11]!, u: bu, v: bv };
+  return { t: tBest, slot: best, sourceIndex: tu[best * TRI_WORDS + SOURCE_WORD]!, u: bu, v: bv };
 }
 
 /** Whether anything is hit in (0, tMax), returning at the first hit found, like `trace_any`. */
@@ -140,8 +141,7 @@ export function traceAnyReference(scene: ReferenceScene, ray: ReferenceRay): boo
   const d = ray.direction;
   const tMax = ray.tMax ?? Infinity;
   const ix = safeInverse(d[0]!), iy = safeInverse(d[1]!), iz = safeInverse(d[2]!);
-  const stack = new Uint32Array(STACK_SIZE);
-  stack[0] = 0;
+  const stack: number[] = [0];
   let sp = 1;
   while (sp > 0) {
     const node = stack[--sp]!;
@@ -151,7 +151,6 @@ export function traceAnyReference(scene: ReferenceScene, ray: ReferenceRay): boo
     if (count > 0) {
       for (let s = first; s < first + count; s++) if (intersectPackedTriangle(tf, s, o, d, tMax) > 0) return true;
     } else {
-      if (sp + 2 > STACK_SIZE) throw new Error('traceAnyReference: stack overflow');
       stack[sp++] = first + 1;
       stack[sp++] = first;
     }
@@ -176,7 +175,7 @@ export function bruteForceClosest(triangles: ArrayBuffer, triangleCount: number,
     }
   }
   if (best < 0) return null;
-  return { t: tBest, slot: best, sourceIndex: tu[best * TRI_WORDS + 11]!, u: bu, v: bv };
+  return { t: tBest, slot: best, sourceIndex: tu[best * TRI_WORDS + SOURCE_WORD]!, u: bu, v: bv };
 }
 
 /** Ground truth any-hit over every triangle. */

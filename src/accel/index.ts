@@ -2,7 +2,7 @@ export { buildBvh, buildBvhAsync, BVH_MAX_DEPTH, BVH_NODE_BYTES } from './bvh-bu
 export type { BvhBuildResult, BvhBuildOptions, BvhAsyncBuildOptions } from './bvh-builder.ts';
 export { computeSahCost, computeThreeMeshBvhSahCost } from './bvh-sah.ts';
 export type { SahCostOptions } from './bvh-sah.ts';
-export { packWavefrontTriangles, packWavefrontBvhNodes } from './triangle-packing.ts';
+export { packWavefrontTriangles, packWavefrontBvhNodes, packPrimitives, bvhParentLinks } from './triangle-packing.ts';
 export type { TriangleMeta } from './triangle-packing.ts';
 export {
   traceClosestReference,

@@ -1,35 +1,31 @@
 /**
- * Packing of the build's output into the GPU records the traversal reads: `triangleLayout` records in
- * BVH slot order (so a leaf's triangles are contiguous) and the `bvhNodeLayout` node array.
+ * Packing of the build's output into the GPU records the traversal reads: `primitiveLayout` records
+ * in BVH slot order (so a leaf's primitives are contiguous), the `bvhNodeLayout` node array, and the
+ * parent links the stackless fallback traversal walks.
  */
-import { bvhNodeLayout, triangleLayout } from '../gpu-layout/records.ts';
+import { INDEX_NONE, PRIMITIVE_SHAPE_MASK, PRIMITIVE_SHAPE_TRIANGLE } from '../gpu-layout/constants.ts';
+import { bvhNodeLayout, primitiveLayout } from '../gpu-layout/records.ts';
 import { fieldOf } from '../gpu-layout/struct-layout.ts';
 import type { BvhBuildResult } from './bvh-builder.ts';
 
 export interface TriangleMeta {
-  /** Per original triangle; default 0. */
-  materialIds?: Uint32Array;
-  /** Per original triangle; default 0. */
-  meshIndices?: Uint32Array;
+  /** Per original triangle: the instance it belongs to (default 0). */
+  instances?: Uint32Array;
+  /** Per original triangle: its index within the instance mesh (default: the original index). */
+  primitives?: Uint32Array;
 }
 
 // Word offsets of the fields, taken from the layout so a layout change cannot silently misplace them.
 const W = {
-  v0: fieldOf(triangleLayout, 'v0').offset / 4,
-  materialId: fieldOf(triangleLayout, 'materialId').offset / 4,
-  e1: fieldOf(triangleLayout, 'e1').offset / 4,
-  meshIndex: fieldOf(triangleLayout, 'meshIndex').offset / 4,
-  e2: fieldOf(triangleLayout, 'e2').offset / 4,
-  sourceIndex: fieldOf(triangleLayout, 'sourceIndex').offset / 4,
+  v0: fieldOf(primitiveLayout, 'v0').offset / 4,
+  instance: fieldOf(primitiveLayout, 'instance').offset / 4,
+  e1: fieldOf(primitiveLayout, 'e1').offset / 4,
+  primitive: fieldOf(primitiveLayout, 'primitive').offset / 4,
+  e2: fieldOf(primitiveLayout, 'e2').offset / 4,
+  shape: fieldOf(primitiveLayout, 'shape').offset / 4,
 };
-const TRI_WORDS = triangleLayout.size / 4;
+export const PRIMITIVE_WORDS = primitiveLayout.size / 4;
 
-/**
- * `triangleLayout` records in BVH order: slot s holds original triangle `order[s]` as v0, e1 = v1 - v0,
- * e2 = v2 - v0 (Moller-Trumbore form; the edges are rounded to f32 here, once, so every consumer of
- * the buffer sees the same triangle), with sourceIndex = the original index. At least one record is
- * written, since WebGPU bindings cannot be empty.
- */
 /**
  * A triangle whose edges are parallel to within 1e-6 rad (collinear "needles", zero area up to
  * rounding) has no visible surface, but Moller-Trumbore's determinant for it is f32 rounding noise
@@ -48,33 +44,51 @@ function collapseNeedle(f: Float32Array, o: number): void {
   }
 }
 
+/** Primitives of any shape in BVH order: slot s holds flat primitive `order[s]`. */
+export function packPrimitives(
+  flat: { geometry: Float32Array; instance: Uint32Array; primitive: Uint32Array; shape: Uint32Array },
+  order: Uint32Array,
+): ArrayBuffer {
+  const count = order.length;
+  const buffer = new ArrayBuffer(Math.max(1, count) * primitiveLayout.size);
+  const f = new Float32Array(buffer);
+  const u = new Uint32Array(buffer);
+  for (let s = 0; s < count; s++) {
+    const k = order[s]!;
+    const o = s * PRIMITIVE_WORDS;
+    const g = 9 * k;
+    for (let c = 0; c < 3; c++) {
+      f[o + W.v0 + c] = flat.geometry[g + c]!;
+      f[o + W.e1 + c] = flat.geometry[g + 3 + c]!;
+      f[o + W.e2 + c] = flat.geometry[g + 6 + c]!;
+    }
+    if ((flat.shape[k]! & PRIMITIVE_SHAPE_MASK) === PRIMITIVE_SHAPE_TRIANGLE) collapseNeedle(f, o);
+    u[o + W.instance] = flat.instance[k]!;
+    u[o + W.primitive] = flat.primitive[k]!;
+    u[o + W.shape] = flat.shape[k]!;
+  }
+  return buffer;
+}
+
+/**
+ * Triangle `primitiveLayout` records in BVH order from a flat triangle soup (9 floats each): slot s
+ * holds original triangle `order[s]` as v0, e1 = v1 - v0, e2 = v2 - v0 (Moller-Trumbore form; the
+ * edges are rounded to f32 once, so every consumer sees the same triangle). At least one record.
+ */
 export function packWavefrontTriangles(triangles: Float32Array, order: Uint32Array, meta: TriangleMeta = {}): ArrayBuffer {
   const count = order.length;
   if (triangles.length < count * 9) throw new RangeError(`packWavefrontTriangles: ${triangles.length / 9} triangles for an order of ${count}`);
-  const buffer = new ArrayBuffer(Math.max(1, count) * triangleLayout.size);
-  const f = new Float32Array(buffer);
-  const u = new Uint32Array(buffer);
-  const { materialIds, meshIndices } = meta;
-  for (let s = 0; s < count; s++) {
-    const t = order[s]!;
-    const p = t * 9;
-    const o = s * TRI_WORDS;
-    const x = triangles[p]!, y = triangles[p + 1]!, z = triangles[p + 2]!;
-    f[o + W.v0] = x;
-    f[o + W.v0 + 1] = y;
-    f[o + W.v0 + 2] = z;
-    f[o + W.e1] = triangles[p + 3]! - x;
-    f[o + W.e1 + 1] = triangles[p + 4]! - y;
-    f[o + W.e1 + 2] = triangles[p + 5]! - z;
-    f[o + W.e2] = triangles[p + 6]! - x;
-    f[o + W.e2 + 1] = triangles[p + 7]! - y;
-    f[o + W.e2 + 2] = triangles[p + 8]! - z;
-    collapseNeedle(f, o);
-    u[o + W.materialId] = materialIds ? materialIds[t]! : 0;
-    u[o + W.meshIndex] = meshIndices ? meshIndices[t]! : 0;
-    u[o + W.sourceIndex] = t;
+  const geometry = new Float32Array(Math.max(1, count) * 9);
+  for (let t = 0; t < count; t++) {
+    for (let c = 0; c < 3; c++) {
+      const v0 = triangles[9 * t + c]!;
+      geometry[9 * t + c] = v0;
+      geometry[9 * t + 3 + c] = triangles[9 * t + 3 + c]! - v0;
+      geometry[9 * t + 6 + c] = triangles[9 * t + 6 + c]! - v0;
+    }
   }
-  return buffer;
+  const primitive = meta.primitives ?? Uint32Array.from({ length: count }, (_, i) => i);
+  return packPrimitives({ geometry, instance: meta.instances ?? new Uint32Array(count), primitive, shape: new Uint32Array(count) }, order);
 }
 
 /** The node records of a build, ready to upload (a copy of at least one record). */
@@ -83,4 +97,17 @@ export function packWavefrontBvhNodes(result: Pick<BvhBuildResult, 'nodes' | 'no
   const out = new ArrayBuffer(bytes);
   new Uint8Array(out).set(new Uint8Array(result.nodes, 0, Math.min(bytes, result.nodes.byteLength)));
   return out;
+}
+
+/** The parent of every node (INDEX_NONE for the root), for stackless traversal. */
+export function bvhParentLinks(nodes: ArrayBuffer, nodeCount: number): Uint32Array {
+  const u = new Uint32Array(nodes);
+  const parents = new Uint32Array(Math.max(1, nodeCount)).fill(INDEX_NONE);
+  for (let i = 0; i < nodeCount; i++) {
+    if (u[i * 8 + 7] !== 0) continue;
+    const left = u[i * 8 + 3]!;
+    parents[left] = i;
+    parents[left + 1] = i;
+  }
+  return parents;
 }

@@ -49,6 +49,7 @@ export const pathTracerBindings = {
   counters: { group: G.transport, binding: 5, kind: 'storage', access: 'read_write', type: 'array<atomic<u32>, QUEUE_COUNTER_COUNT>', doc: 'queue lengths and statistics' },
   samples: { group: G.transport, binding: 6, kind: 'storage', access: 'read_write', type: 'array<SampleRecord>', doc: 'radiance and AOVs of every path sample' },
   film: { group: G.transport, binding: 7, kind: 'storage', access: 'read_write', type: 'array<vec4f>', doc: 'full-frame accumulation: radiance sum, sample count' },
+  filmAovs: { group: G.transport, binding: 11, kind: 'storage', access: 'read_write', type: 'array<vec4f>', doc: 'AOV sums per pixel: (albedo, depth), (normal, hits)' },
   dispatchArgs: { group: G.transport, binding: 8, kind: 'storage', access: 'read_write', type: 'array<u32>', doc: 'indirect dispatch arguments written from queue lengths' },
   wave: { group: G.transport, binding: 9, kind: 'uniform', dynamic: true, type: 'WaveUniforms', doc: 'per-wave constants' },
   bounce: { group: G.transport, binding: 10, kind: 'uniform', dynamic: true, type: 'BounceUniforms', doc: 'per-bounce constants' },

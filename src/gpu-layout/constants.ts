@@ -74,6 +74,8 @@ export const INSTANCE_FLAG_HAS_UV1 = 1 << 6;
 export const INSTANCE_FLAG_HAS_COLORS = 1 << 7;
 
 export const VERTEX_FLAG_BITANGENT_NEGATIVE = 1;
+/** The vertex's normal was zero or degenerate: triangles using it shade with the geometric normal. */
+export const VERTEX_FLAG_NORMAL_INVALID = 2;
 
 export const MATERIAL_FLAG_DOUBLE_SIDED = 1;
 export const MATERIAL_ALPHA_MODE_SHIFT = 1;
@@ -136,6 +138,7 @@ export const gpuConstants: Readonly<Record<string, number>> = Object.freeze({
   INSTANCE_FLAG_HAS_UV1,
   INSTANCE_FLAG_HAS_COLORS,
   VERTEX_FLAG_BITANGENT_NEGATIVE,
+  VERTEX_FLAG_NORMAL_INVALID,
   MATERIAL_FLAG_DOUBLE_SIDED,
   MATERIAL_ALPHA_MODE_SHIFT,
   MATERIAL_ALPHA_MODE_MASK,

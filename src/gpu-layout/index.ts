@@ -1,17 +1,16 @@
 export {
-  rendererWavefrontComputeStatsStride,
-  rendererWavefrontComputeWorkgroupSize,
   rendererWavefrontRecordSizes,
   rendererWavefrontPathStateBytes,
   rendererWavefrontShadowRayBytes,
-  rendererWavefrontTriangleBytes,
-  rendererWavefrontTriangleAttributesBytes,
+  rendererWavefrontPrimitiveBytes,
+  rendererWavefrontVertexBytes,
+  rendererWavefrontInstanceBytes,
   rendererWavefrontBvhNodeBytes,
   rendererWavefrontMaterialBytes,
-  rendererWavefrontSceneObjectBytes,
-  rendererWavefrontLightEntryBytes,
+  rendererWavefrontLightRecordBytes,
   rendererWavefrontAccumulationTexelBytes,
   wavefrontRecordLayouts,
-  queueCounterSlots,
 } from './records.ts';
+export { rendererWavefrontComputeStatsStride, rendererWavefrontComputeWorkgroupSize, queueCounterSlots, bvhTraversalStackSize } from './constants.ts';
+export { pathTracerBindings, bindGroupIndices, type PathTracerBindingName } from './bindings.ts';
 export { defineStructLayout, structLayoutToWgsl, writeStruct, readStruct, type StructLayout, type StructFieldLayout, type WgslFieldType } from './struct-layout.ts';

@@ -59,7 +59,7 @@ export const instanceLayout: StructLayout = defineStructLayout('Instance', 1, [
   ['normalToWorld2', 'vec4f', 'row 2'],
   ['baseVertex', 'u32', 'first vertex of the mesh in vertices'],
   ['firstIndex', 'u32', 'first index of the mesh in indices'],
-  ['material', 'u32', 'index of the MaterialCore record'],
+  ['material', 'u32', 'materials-heap offset of the MaterialCore'],
   ['flags', 'u32', 'INSTANCE_FLAG_* bits and the shape kind'],
   ['lightBase', 'u32', 'light index of the mesh triangle 0 when the material emits, else INDEX_NONE'],
   ['objectId', 'u32', 'user-facing instance id (AOVs)'],
@@ -97,7 +97,7 @@ export const materialCoreLayout: StructLayout = defineStructLayout('MaterialCore
   ['metallicRoughnessTexture', 'u32'],
   ['normalTexture', 'u32'],
   ['emissiveTexture', 'u32'],
-  ['specular', 'u32', 'SpecularBlock heap offset or INDEX_NONE (KHR_materials_specular)'],
+  ['specular', 'u32', 'extension block heap offsets (INDEX_NONE: absent); KHR_materials_specular'],
   ['transmission', 'u32', 'extension block heap offset or INDEX_NONE'],
   ['volume', 'u32'],
   ['clearcoat', 'u32'],
@@ -131,16 +131,6 @@ export const textureBindingLayout: StructLayout = defineStructLayout('TextureBin
   ['reserved1', 'u32'],
 ]);
 
-/** KHR_materials_specular. */
-export const specularBlockLayout: StructLayout = defineStructLayout('SpecularBlock', 1, [
-  ['specularColor', 'vec3f', 'linear RGB'],
-  ['specular', 'f32'],
-  ['specularTexture', 'u32', 'TextureBinding heap offset or INDEX_NONE (alpha channel)'],
-  ['specularColorTexture', 'u32', 'TextureBinding heap offset or INDEX_NONE (sRGB)'],
-  ['reserved0', 'u32'],
-  ['reserved1', 'u32'],
-]);
-
 // ---- Lighting and the frame (bind group 2) --------------------------------------------------------
 
 /**
@@ -153,13 +143,18 @@ export const lightRecordLayout: StructLayout = defineStructLayout('LightRecord',
   ['e1', 'vec3f'],
   ['flags', 'u32', 'LIGHT_FLAG_* bits'],
   ['e2', 'vec3f'],
-  ['instance', 'u32', 'emitting instance (textured emission lookups)'],
+  ['instance', 'u32', 'emitting instance'],
   ['emission', 'vec3f', 'emitted radiance (material factor; textures multiply it)'],
   ['primitive', 'u32', 'emitting triangle within the instance mesh'],
   ['pmf', 'f32', 'probability that light selection picks this light'],
   ['aliasThreshold', 'f32', 'alias table: keep this bin when u < threshold'],
   ['aliasIndex', 'u32'],
   ['area', 'f32', 'world-space area'],
+  ['uv0', 'vec2f', 'emissive-texture uvs of the vertices (KHR_texture_transform applied)'],
+  ['uv1', 'vec2f'],
+  ['uv2', 'vec2f'],
+  ['texture', 'u32', 'materials-heap offset of the emissive TextureInfo, or INDEX_NONE'],
+  ['reserved', 'u32'],
 ]);
 
 /** Per-frame constants: camera, environment, lights and scene extents. */
@@ -314,7 +309,6 @@ export const wavefrontRecordLayouts = {
   MaterialCore: materialCoreLayout,
   TextureInfo: textureInfoLayout,
   TextureBinding: textureBindingLayout,
-  SpecularBlock: specularBlockLayout,
   LightRecord: lightRecordLayout,
   FrameUniforms: frameUniformsLayout,
   PathState: pathStateLayout,
@@ -330,7 +324,7 @@ export const wavefrontRecordLayouts = {
 
 /** Records stored in vec4 heaps get generated WGSL loaders (`load_<snake name>(heap offset)`). */
 export const heapRecordLayouts = {
-  materials: [materialCoreLayout, textureInfoLayout, textureBindingLayout, specularBlockLayout],
+  materials: [materialCoreLayout, textureInfoLayout, textureBindingLayout],
 } as const;
 
 /** GPU record sizes in bytes (the mirrored package's "GPU record-size constants"). */

@@ -1,2 +1,2 @@
 export { buildAliasTable, aliasTableDistribution, type AliasTable } from './alias-table.ts';
-export { buildEmissiveLightTable, type EmissiveLightTable, type EmissiveTriangleInput } from './emissive-lights.ts';
+export { luminance } from './emissive-lights.ts';

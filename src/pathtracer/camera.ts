@@ -3,8 +3,9 @@ import type { WavefrontCameraInput } from '../scene/types.ts';
 
 export type Vec3 = [number, number, number];
 
-/** A validated pinhole camera with its orthonormal basis (right-handed, looking down `forward`). */
+/** A validated camera with its orthonormal basis (right-handed, looking down `forward`). */
 export interface WavefrontCamera {
+  kind: 'perspective' | 'orthographic';
   position: Vec3;
   target: Vec3;
   up: Vec3;
@@ -14,6 +15,8 @@ export interface WavefrontCamera {
   /** Up, orthogonalised against forward. */
   trueUp: Vec3;
   tanHalfFovY: number;
+  /** Orthographic: half the height of the view volume. */
+  orthographicHalfHeight: number;
 }
 
 export const defaultWavefrontCamera: WavefrontCameraInput = { position: [0, 0, 3.9], target: [0, 0, 0], up: [0, 1, 0], fovYDegrees: 39.3 };
@@ -26,6 +29,12 @@ const scale = (a: Vec3, s: number): Vec3 => [a[0] * s, a[1] * s, a[2] * s];
 export function normalizeWavefrontCamera(input: WavefrontCameraInput | undefined, field = 'camera'): WavefrontCamera {
   const c = input ?? defaultWavefrontCamera;
   if (typeof c !== 'object' || c === null) fail('INVALID_OPTION', field, 'expected a camera object');
+  for (const key of Object.keys(c)) {
+    if (!['type', 'position', 'target', 'up', 'fovYDegrees', 'orthographicHeight'].includes(key)) fail('INVALID_OPTION', `${field}.${key}`, 'unknown camera key');
+  }
+  const kind = c.type ?? 'perspective';
+  if (kind !== 'perspective' && kind !== 'orthographic') fail('INVALID_OPTION', `${field}.type`, `expected "perspective" or "orthographic", got ${JSON.stringify(kind)}`);
+  const orthographicHeight = c.orthographicHeight === undefined ? 2 : requireNumberInRange(c.orthographicHeight, `${field}.orthographicHeight`, { min: Number.MIN_VALUE, max: 1e18 });
   const position = requireVec(c.position, 3, `${field}.position`) as Vec3;
   const target = requireVec(c.target, 3, `${field}.target`) as Vec3;
   const up = (c.up === undefined ? [0, 1, 0] : requireVec(c.up, 3, `${field}.up`)) as Vec3;
@@ -39,5 +48,5 @@ export function normalizeWavefrontCamera(input: WavefrontCameraInput | undefined
   if (!(rl > 1e-9 * Math.max(1, length(up)))) fail('INVALID_OPTION', `${field}.up`, 'up must not be parallel to the view direction');
   const right = scale(r, 1 / rl);
   const trueUp = cross(right, forward);
-  return { position, target, up, fovYDegrees, forward, right, trueUp, tanHalfFovY: Math.tan((fovYDegrees * Math.PI) / 360) };
+  return { kind, position, target, up, fovYDegrees, forward, right, trueUp, tanHalfFovY: Math.tan((fovYDegrees * Math.PI) / 360), orthographicHalfHeight: orthographicHeight / 2 };
 }

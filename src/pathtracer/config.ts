@@ -1,4 +1,5 @@
 import { fail, requireInteger, requireNumberInRange, requireVec } from '../errors/validate.ts';
+import { maxRadiance } from '../scene/limits.ts';
 import type { WavefrontToneMapping } from '../scene/types.ts';
 import { normalizeWavefrontCamera, type WavefrontCamera } from './camera.ts';
 import type { WavefrontPathTracingOptions } from './types.ts';
@@ -19,13 +20,24 @@ export interface WavefrontPathTracingComputeConfig {
   environment: [number, number, number];
   toneMapping: WavefrontToneMapping;
   exposure: number;
+  /** Accumulate albedo, normal and depth AOVs of the first non-specular hit. */
+  aovs: boolean;
 }
 
 const toneMappings: readonly WavefrontToneMapping[] = ['neutral', 'aces', 'linear'];
 
+/** Every option name the renderer understands; any other key is a typed error, never ignored. */
+export const wavefrontOptionNames: ReadonlySet<string> = new Set<keyof WavefrontPathTracingOptions>([
+  'width', 'height', 'maxDepth', 'samplesPerPixel', 'tileSize', 'seed', 'camera', 'meshes', 'instances', 'materials', 'textures',
+  'images', 'sceneObjects', 'lights', 'environment', 'toneMapping', 'exposure', 'aovs', 'shaderSpecialization', 'canvas', 'device', 'powerPreference',
+]);
+
 /** Validates the non-geometry options; every error names its field. */
 export function createWavefrontPathTracingComputeConfig(options: Partial<WavefrontPathTracingOptions>): WavefrontPathTracingComputeConfig {
   if (typeof options !== 'object' || options === null) fail('INVALID_OPTION', 'options', 'expected an options object');
+  for (const key of Object.keys(options)) {
+    if (!wavefrontOptionNames.has(key)) fail('INVALID_OPTION', key, `unknown option (expected one of ${[...wavefrontOptionNames].join(', ')})`);
+  }
   const width = requireInteger(options.width, 'width', { min: 1, max: maxWavefrontImageSize });
   const height = requireInteger(options.height, 'height', { min: 1, max: maxWavefrontImageSize });
   const maxDepth = options.maxDepth === undefined ? 8 : requireInteger(options.maxDepth, 'maxDepth', { min: 1, max: maxWavefrontDepth });
@@ -36,12 +48,17 @@ export function createWavefrontPathTracingComputeConfig(options: Partial<Wavefro
   let environment: [number, number, number] = [0, 0, 0];
   if (options.environment !== undefined) {
     if (typeof options.environment !== 'object' || options.environment === null) fail('INVALID_OPTION', 'environment', 'expected { color: [r, g, b] }');
+    for (const key of Object.keys(options.environment)) if (key !== 'color') fail('INVALID_OPTION', `environment.${key}`, 'unknown environment key');
     const c = requireVec(options.environment.color, 3, 'environment.color');
-    c.forEach((v, i) => requireNumberInRange(v, `environment.color[${i}]`, { min: 0 }));
+    c.forEach((v, i) => requireNumberInRange(v, `environment.color[${i}]`, { min: 0, max: maxRadiance }));
     environment = [c[0]!, c[1]!, c[2]!];
+  }
+  if (options.lights !== undefined && (!Array.isArray(options.lights) || options.lights.length > 0)) {
+    fail('INVALID_OPTION', 'lights', 'punctual and area lights are not supported by this renderer version; use emissive meshes');
   }
   const toneMapping = options.toneMapping ?? 'neutral';
   if (!toneMappings.includes(toneMapping)) fail('INVALID_OPTION', 'toneMapping', `expected one of ${toneMappings.join(', ')}`);
   const exposure = options.exposure === undefined ? 1 : requireNumberInRange(options.exposure, 'exposure', { min: 0 });
-  return { width, height, maxDepth, samplesPerPixel, tileSize, seed, camera, environment, toneMapping, exposure };
+  if (options.aovs !== undefined && typeof options.aovs !== 'boolean') fail('INVALID_OPTION', 'aovs', 'expected a boolean');
+  return { width, height, maxDepth, samplesPerPixel, tileSize, seed, camera, environment, toneMapping, exposure, aovs: options.aovs ?? false };
 }

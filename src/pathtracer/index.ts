@@ -1,8 +1,8 @@
 export { createWavefrontPathTracingComputeRenderer } from './renderer.ts';
 export { renderWavefrontPathTracingComputeFrame, type WavefrontOneShotResult } from './one-shot.ts';
-export { createWavefrontPathTracingComputeConfig, maxWavefrontDepth, type WavefrontPathTracingComputeConfig } from './config.ts';
+export { createWavefrontPathTracingComputeConfig, maxWavefrontDepth, wavefrontOptionNames, type WavefrontPathTracingComputeConfig } from './config.ts';
 export { createWavefrontPathTracingComputeShaderSource, type WavefrontShaderSources } from './shader-source.ts';
-export { createWavefrontMeshAcceleration, createWavefrontMeshAccelerationAsync, type WavefrontMeshAcceleration } from './mesh-acceleration.ts';
+export { createWavefrontMeshAcceleration, createWavefrontGpuMeshSource, packWavefrontSceneObjects, type WavefrontMeshAcceleration } from './scene/public-helpers.ts';
 export {
   createWavefrontReferenceRay,
   intersectWavefrontReferenceTriangle,
@@ -12,7 +12,7 @@ export {
   type WavefrontReferenceHit,
   type WavefrontReferenceTraceResult,
 } from './reference.ts';
-export { wavefrontKernels } from './kernels.ts';
+export { wavefrontKernels } from './pipelines.ts';
 export type * from './types.ts';
 
 /** The execution model of the path tracer. */

@@ -1,84 +1,159 @@
 import { GpuRendererError } from '../errors/gpu-renderer-error.ts';
+import { bindingLayoutEntry, pathTracerBindings, type BindingSpec } from '../gpu-layout/bindings.ts';
 import { ShaderStage } from '../gpu/webgpu-constants.ts';
-import { bindGroupLayoutEntries, kernelGroups, wavefrontKernels, type WavefrontKernelName } from './kernels.ts';
-import type { WavefrontShaderSources } from './shader-source.ts';
+import { displayBindings } from '../shaders/display-bindings.ts';
+import type { ShaderFeatures } from '../shaders/features.ts';
+import { generatedPrograms } from '../shaders/programs.generated.ts';
+import type { ProgramName } from '../shaders/programs.ts';
 
-export interface WavefrontKernelPipeline {
+/** The compute kernels of one wavefront wave, with the program and entry point of each. */
+export const wavefrontKernels = {
+  camera: { program: 'camera', entryPoint: 'generate_camera_rays' },
+  prepareIntersect: { program: 'prepare', entryPoint: 'prepare_intersect' },
+  intersect: { program: 'intersect', entryPoint: 'intersect_closest' },
+  prepareShading: { program: 'prepare', entryPoint: 'prepare_shading' },
+  escaped: { program: 'escaped', entryPoint: 'shade_escaped' },
+  evaluateMaterials: { program: 'evaluateMaterials', entryPoint: 'evaluate_materials' },
+  scatter: { program: 'scatter', entryPoint: 'scatter_paths' },
+  prepareShadow: { program: 'prepare', entryPoint: 'prepare_shadow' },
+  shadow: { program: 'shadow', entryPoint: 'trace_shadow_rays' },
+  accumulate: { program: 'accumulate', entryPoint: 'accumulate_samples' },
+} as const satisfies Record<string, { program: ProgramName; entryPoint: string }>;
+
+export type WavefrontKernelName = keyof typeof wavefrontKernels;
+
+export interface ProgramLayout {
+  /** Bind group layouts by group index (empty layouts fill unused lower groups). */
+  groups: GPUBindGroupLayout[];
+  /** The program's bindings, by group index. */
+  bindingsByGroup: string[][];
+  layout: GPUPipelineLayout;
+}
+
+export interface KernelPipeline extends ProgramLayout {
   pipeline: GPUComputePipeline;
-  /** Bind group layout per group index. */
-  groupLayouts: GPUBindGroupLayout[];
 }
 
-export interface WavefrontPipelines {
-  kernels: Record<WavefrontKernelName, WavefrontKernelPipeline>;
-  resolve: GPUComputePipeline;
-  resolveLayout: GPUBindGroupLayout;
+export interface PathTracerPipelines {
+  kernels: Record<WavefrontKernelName, KernelPipeline>;
+  resolve: KernelPipeline;
 }
 
-async function checkedModule(device: GPUDevice, code: string, label: string): Promise<GPUShaderModule> {
-  const module = device.createShaderModule({ code, label });
-  const info = await module.getCompilationInfo();
-  const errors = info.messages.filter((m) => m.type === 'error');
-  if (errors.length > 0) {
-    const lines = code.split('\n');
-    const detail = errors.map((e) => `${label}:${e.lineNum}:${e.linePos} ${e.message} | ${lines[e.lineNum - 1]?.trim() ?? ''}`).join('\n');
-    throw new GpuRendererError('SHADER_COMPILATION_FAILED', `WGSL compilation failed:\n${detail}`);
+const tables: Record<string, Record<string, BindingSpec>> = { pathTracer: pathTracerBindings, display: displayBindings };
+const programTable: Record<ProgramName, string> = {
+  camera: 'pathTracer', prepare: 'pathTracer', intersect: 'pathTracer', escaped: 'pathTracer', evaluateMaterials: 'pathTracer',
+  scatter: 'pathTracer', shadow: 'pathTracer', accumulate: 'pathTracer', resolve: 'display', present: 'display',
+};
+
+/** Explicit bind group layouts for exactly the bindings a program's linked WGSL declares. */
+export function programLayout(device: GPUDevice, program: ProgramName, visibility: number = ShaderStage.COMPUTE): ProgramLayout {
+  const table = tables[programTable[program]]!;
+  const names = generatedPrograms[program].bindings;
+  const byGroup: string[][] = [];
+  for (const name of names) {
+    const spec = table[name]!;
+    (byGroup[spec.group] ??= []).push(name);
+  }
+  for (let g = 0; g < byGroup.length; g++) byGroup[g] ??= [];
+  const groups = byGroup.map((group, g) =>
+    device.createBindGroupLayout({
+      label: `${program}.group${g}`,
+      entries: group.map((name) => bindingLayoutEntry(table[name]!, visibility)).sort((a, b) => a.binding - b.binding),
+    }),
+  );
+  return { groups, bindingsByGroup: byGroup, layout: device.createPipelineLayout({ label: program, bindGroupLayouts: groups }) };
+}
+
+const modules = new WeakMap<GPUDevice, Map<ProgramName, Promise<GPUShaderModule>>>();
+
+/** The program's shader module, compiled once per device; WGSL errors become typed errors. */
+export function programModule(device: GPUDevice, program: ProgramName): Promise<GPUShaderModule> {
+  let perDevice = modules.get(device);
+  if (!perDevice) modules.set(device, (perDevice = new Map()));
+  let module = perDevice.get(program);
+  if (!module) {
+    const code = generatedPrograms[program].wgsl;
+    module = (async () => {
+      const m = device.createShaderModule({ code, label: program });
+      const info = await m.getCompilationInfo();
+      const errors = info.messages.filter((e) => e.type === 'error');
+      if (errors.length > 0) {
+        const lines = code.split('\n');
+        const detail = errors.map((e) => `${program}:${e.lineNum}:${e.linePos} ${e.message} | ${lines[e.lineNum - 1]?.trim() ?? ''}`).join('\n');
+        throw new GpuRendererError('SHADER_COMPILATION_FAILED', `WGSL compilation failed:\n${detail}`);
+      }
+      return m;
+    })();
+    module.catch(() => perDevice.delete(program));
+    perDevice.set(program, module);
   }
   return module;
 }
 
-/** Compiles every kernel with an explicit pipeline layout built from its binding list. */
-export async function createWavefrontPipelines(device: GPUDevice, sources: WavefrontShaderSources): Promise<WavefrontPipelines> {
-  device.pushErrorScope('validation');
-  const kernels = {} as Record<WavefrontKernelName, WavefrontKernelPipeline>;
-  const modules = new Map<string, GPUShaderModule>();
-  for (const [name, spec] of Object.entries(wavefrontKernels) as [WavefrontKernelName, (typeof wavefrontKernels)[WavefrontKernelName]][]) {
-    const code = sources[name];
-    let module = modules.get(code);
-    if (!module) {
-      module = await checkedModule(device, code, spec.module);
-      modules.set(code, module);
-    }
-    const groupLayouts = kernelGroups(spec).map((g) => device.createBindGroupLayout({ label: `${name}.group${g}`, entries: bindGroupLayoutEntries(spec, g) }));
-    const pipeline = await device.createComputePipelineAsync({
-      label: name,
-      layout: device.createPipelineLayout({ bindGroupLayouts: groupLayouts }),
-      compute: { module, entryPoint: spec.entryPoint },
-    });
-    kernels[name] = { pipeline, groupLayouts };
+/** The override constants a program declares, from the feature set. */
+export function overrideConstants(program: ProgramName, features: ShaderFeatures): Record<string, number> {
+  const out: Record<string, number> = {};
+  for (const name of generatedPrograms[program].overrides) {
+    if (!(name in features)) throw new Error(`program ${program} declares override ${name}, which is no shader feature`);
+    out[name] = features[name as keyof ShaderFeatures] ? 1 : 0;
   }
-  const resolveModule = await checkedModule(device, sources.resolve, 'kernel-resolve');
-  const resolveLayout = device.createBindGroupLayout({
-    label: 'resolve',
-    entries: [
-      { binding: 0, visibility: ShaderStage.COMPUTE, buffer: { type: 'uniform' } },
-      { binding: 1, visibility: ShaderStage.COMPUTE, buffer: { type: 'read-only-storage' } },
-      { binding: 2, visibility: ShaderStage.COMPUTE, buffer: { type: 'storage' } },
-    ],
-  });
-  const resolve = await device.createComputePipelineAsync({
-    label: 'resolve',
-    layout: device.createPipelineLayout({ bindGroupLayouts: [resolveLayout] }),
-    compute: { module: resolveModule, entryPoint: 'resolve_pixels' },
-  });
-  const error = await device.popErrorScope();
-  if (error) throw new GpuRendererError('GPU_VALIDATION_FAILED', `pipeline creation failed: ${error.message}`);
-  return { kernels, resolve, resolveLayout };
+  return out;
 }
 
-/** Render pipeline drawing the resolve into a canvas texture of `format`. */
-export async function createPresentPipeline(device: GPUDevice, code: string, format: GPUTextureFormat): Promise<{ pipeline: GPURenderPipeline; layout: GPUBindGroupLayout }> {
-  const module = await checkedModule(device, code, 'kernel-present');
-  const layout = device.createBindGroupLayout({
-    label: 'present',
-    entries: [
-      { binding: 0, visibility: ShaderStage.FRAGMENT, buffer: { type: 'uniform' } },
-      { binding: 1, visibility: ShaderStage.FRAGMENT, buffer: { type: 'read-only-storage' } },
-    ],
+const pipelineCache = new WeakMap<GPUDevice, Map<string, Promise<PathTracerPipelines>>>();
+
+export function featureKey(features: ShaderFeatures): string {
+  return Object.entries(features).map(([k, v]) => `${k}=${v ? 1 : 0}`).join(',');
+}
+
+async function computePipeline(device: GPUDevice, program: ProgramName, entryPoint: string, features: ShaderFeatures): Promise<KernelPipeline> {
+  const layout = programLayout(device, program);
+  const module = await programModule(device, program);
+  const pipeline = await device.createComputePipelineAsync({
+    label: `${program}.${entryPoint}`,
+    layout: layout.layout,
+    compute: { module, entryPoint, constants: overrideConstants(program, features) },
   });
+  return { ...layout, pipeline };
+}
+
+async function createPipelines(device: GPUDevice, features: ShaderFeatures): Promise<PathTracerPipelines> {
+  device.pushErrorScope('validation');
+  try {
+    const entries = await Promise.all(
+      (Object.entries(wavefrontKernels) as [WavefrontKernelName, (typeof wavefrontKernels)[WavefrontKernelName]][]).map(
+        async ([name, k]) => [name, await computePipeline(device, k.program, k.entryPoint, features)] as const,
+      ),
+    );
+    const resolve = await computePipeline(device, 'resolve', 'resolve_pixels', features);
+    return { kernels: Object.fromEntries(entries) as Record<WavefrontKernelName, KernelPipeline>, resolve };
+  } finally {
+    const error = await device.popErrorScope();
+    if (error) throw new GpuRendererError('GPU_VALIDATION_FAILED', `pipeline creation failed: ${error.message}`);
+  }
+}
+
+/** The path tracer's pipelines for a feature set, created once per device and feature set. */
+export function pathTracerPipelines(device: GPUDevice, features: ShaderFeatures): Promise<PathTracerPipelines> {
+  let perDevice = pipelineCache.get(device);
+  if (!perDevice) pipelineCache.set(device, (perDevice = new Map()));
+  const key = featureKey(features);
+  let p = perDevice.get(key);
+  if (!p) {
+    p = createPipelines(device, features);
+    p.catch(() => perDevice.delete(key));
+    perDevice.set(key, p);
+  }
+  return p;
+}
+
+/** Render pipeline drawing the display resolve into a canvas texture of `format`. */
+export async function createPresentPipeline(device: GPUDevice, format: GPUTextureFormat): Promise<{ pipeline: GPURenderPipeline; layout: ProgramLayout }> {
+  const layout = programLayout(device, 'present', ShaderStage.FRAGMENT);
+  const module = await programModule(device, 'present');
   const pipeline = await device.createRenderPipelineAsync({
     label: 'present',
-    layout: device.createPipelineLayout({ bindGroupLayouts: [layout] }),
+    layout: layout.layout,
     vertex: { module, entryPoint: 'present_vertex' },
     fragment: { module, entryPoint: 'present_fragment', targets: [{ format }] },
     primitive: { topology: 'triangle-list' },

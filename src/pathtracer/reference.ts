@@ -1,8 +1,8 @@
 import type { WavefrontPathTracingComputeConfig } from './config.ts';
 
 /**
- * Deterministic JavaScript mirrors of the WGSL camera and triangle math (camera.wgsl,
- * intersect.wgsl), evaluated in float32 with Math.fround at each step, so tools and tests can check
+ * Deterministic JavaScript mirrors of the WGSL camera and triangle math (camera.wesl,
+ * accel/intersect.wesl), evaluated in float32 with Math.fround at each step, so tools and tests can check
  * GPU primary hits without a device.
  */
 const f = Math.fround;
@@ -57,8 +57,15 @@ export function createWavefrontReferenceRay(
   const y = f(f(py) + f(jy));
   const ndcX = f(f(f(2 * x) / f(config.width)) - 1);
   const ndcY = f(1 - f(f(2 * y) / f(config.height)));
-  const tan = f(c.tanHalfFovY);
   const aspect = f(config.width / config.height);
+  if (c.kind === 'orthographic') {
+    const h = f(c.orthographicHalfHeight);
+    const ox = f(f(ndcX * h) * aspect);
+    const oy = f(ndcY * h);
+    const origin = [0, 1, 2].map((i) => f(f(f(c.position[i]!) + f(ox * f(c.right[i]!))) + f(oy * f(c.trueUp[i]!))));
+    return { origin: [origin[0]!, origin[1]!, origin[2]!], direction: [f(c.forward[0]), f(c.forward[1]), f(c.forward[2])] };
+  }
+  const tan = f(c.tanHalfFovY);
   const sx = f(f(ndcX * tan) * aspect);
   const sy = f(ndcY * tan);
   const d = [0, 1, 2].map((i) => f(f(f(c.forward[i]!) + f(sx * f(c.right[i]!))) + f(sy * f(c.trueUp[i]!))));
@@ -66,7 +73,7 @@ export function createWavefrontReferenceRay(
   return { origin: [f(c.position[0]), f(c.position[1]), f(c.position[2])], direction: [f(d[0]! / len), f(d[1]! / len), f(d[2]! / len)] };
 }
 
-/** Moller-Trumbore as in intersect.wgsl: two-sided, t in (0, tMax). */
+/** Moller-Trumbore as in intersect.wesl: two-sided, t in (0, tMax). */
 export function intersectWavefrontReferenceTriangle(
   ray: WavefrontReferenceRay,
   triangle: WavefrontReferenceTriangle,

@@ -1,18 +1,12 @@
-import { composeShader } from '../shaders/modules.ts';
-import { wavefrontKernels, type WavefrontKernelName } from './kernels.ts';
+import { generatedPrograms } from '../shaders/programs.generated.ts';
+import type { ProgramName } from '../shaders/programs.ts';
 
-export type WavefrontShaderSources = Record<WavefrontKernelName | 'resolve' | 'present', string>;
+export type WavefrontShaderSources = Record<ProgramName, string>;
 
 /**
- * The composed WGSL of every wavefront kernel (each a separate program, so a pipeline only sees the
- * bindings it uses), plus the display resolve and canvas present programs.
+ * The linked WGSL of every GPU program (the wavefront kernels, the display resolve and the canvas
+ * present), as the build's WESL linker produced them from src/**\/*.wesl.
  */
 export function createWavefrontPathTracingComputeShaderSource(): WavefrontShaderSources {
-  const out: Partial<WavefrontShaderSources> = {};
-  for (const [name, spec] of Object.entries(wavefrontKernels) as [WavefrontKernelName, (typeof wavefrontKernels)[WavefrontKernelName]][]) {
-    out[name] = composeShader([spec.module]);
-  }
-  out.resolve = composeShader(['kernel-resolve']);
-  out.present = composeShader(['kernel-present']);
-  return out as WavefrontShaderSources;
+  return Object.fromEntries(Object.entries(generatedPrograms).map(([name, p]) => [name, p.wgsl])) as WavefrontShaderSources;
 }

@@ -1,14 +1,9 @@
-import type {
-  WavefrontCameraInput,
-  WavefrontEnvironmentInput,
-  WavefrontMeshInput,
-  WavefrontSceneObjectInput,
-  WavefrontToneMapping,
-} from '../scene/types.ts';
+import type { WavefrontCameraInput, WavefrontSceneDescription, WavefrontToneMapping } from '../scene/types.ts';
 
 export type CanvasTarget = HTMLCanvasElement | OffscreenCanvas | string;
 
-export interface WavefrontPathTracingOptions {
+/** Renderer options: the scene (what a scene file or the glTF loader gives) plus render settings. */
+export interface WavefrontPathTracingOptions extends WavefrontSceneDescription {
   width: number;
   height: number;
   /** Scattering events per path (pbrt-v4 semantics), 1..32; default 8. */
@@ -19,15 +14,18 @@ export interface WavefrontPathTracingOptions {
   tileSize?: number;
   /** Sampler seed; the same seed gives the same image. Default 0. */
   seed?: number;
-  camera?: WavefrontCameraInput;
-  meshes?: WavefrontMeshInput[];
-  sceneObjects?: WavefrontSceneObjectInput[];
-  /** Uniform environment radiance; omitted means black. */
-  environment?: WavefrontEnvironmentInput;
   /** Tone mapping for readPixels and the canvas; default 'neutral' (Khronos PBR Neutral). */
   toneMapping?: WavefrontToneMapping;
   /** Exposure multiplier applied before tone mapping; default 1. */
   exposure?: number;
+  /**
+   * Kernel specialisation: 'scene' (default) compiles every optional shader feature the scene does
+   * not use out of the kernels (override constants); 'off' compiles them all in. The image is the
+   * same either way; 'off' exists to check exactly that.
+   */
+  shaderSpecialization?: 'scene' | 'off';
+  /** Accumulate albedo, normal and depth of each sample's first non-specular hit (readAov). Default false. */
+  aovs?: boolean;
   canvas?: CanvasTarget;
   /** Share a device; otherwise one is acquired (Dawn in Node.js). */
   device?: GPUDevice;
@@ -42,11 +40,13 @@ export interface WavefrontRayCounts {
 }
 
 export interface WavefrontMemoryStats {
-  /** Scene buffers: triangles, attributes, BVH, materials, objects, lights. */
+  /** Scene buffers: primitives, BVH, instances, vertex streams, materials, lights. */
   sceneBytes: number;
-  /** Tile-sized queues: paths, shadow rays, tile radiance, counters. */
+  /** The material texture atlas (included in sceneBytes). */
+  textureBytes: number;
+  /** Tile-sized queues: paths, rays, hits, surfaces, shadow rays, samples, counters. */
   queueBytes: number;
-  /** Full-frame float32 accumulation plus the display buffer. */
+  /** Full-frame float32 accumulation (and AOVs) plus the display buffer. */
   frameBytes: number;
   totalBytes: number;
 }
@@ -59,10 +59,15 @@ export interface WavefrontFrameStats {
   /** Samples per pixel in the accumulation. */
   samplesAccumulated: number;
   rays: WavefrontRayCounts;
-  /** Paths ended by Russian roulette, by reaching maxDepth, by escaping. */
-  terminations: { russianRoulette: number; maxDepth: number; escaped: number };
+  /**
+   * How paths ended: Russian roulette, reaching maxDepth, escaping to the environment, zero
+   * throughput (absorbed), or a BSDF sample with no valid direction.
+   */
+  terminations: { russianRoulette: number; maxDepth: number; escaped: number; absorbed: number; invalidBsdfSample: number };
   /** Samples that produced NaN/Inf or negative radiance (dropped and counted, never clamped). */
   invalidSamples: number;
+  /** Rays whose BVH traversal overflowed its stack and finished in stackless mode (exact, slower). */
+  traversalFallbacks: number;
   /** GPU time of this frame in ms where timestamp queries exist, else null. */
   gpuTimeMs: number | null;
   /** Wall-clock time of renderFrame in ms. */
@@ -98,6 +103,11 @@ export interface WavefrontRendererSnapshot {
   bvhNodeCount: number;
   lightCount: number;
   sceneObjectCount: number;
+  instanceCount: number;
+  textureCount: number;
+  bvhDepth: number;
+  /** Loader and preparation warnings (downscaled textures, ...). */
+  warnings: readonly string[];
   adapter: string;
   memory: WavefrontMemoryStats;
   destroyed: boolean;
@@ -115,6 +125,12 @@ export interface WavefrontPathTracingRenderer {
   renderOnce(options?: WavefrontRenderFrameOptions): void;
   updateCamera(camera: WavefrontCameraInput): void;
   readRadiance(): Promise<WavefrontRadianceImage>;
+  /**
+   * Mean of an AOV over the accumulated samples (needs `aovs: true`): 'albedo' (rgb), 'normal'
+   * (world shading normal xyz) or 'depth' (distance from the camera, in r); RGBA float32, top row
+   * first. Samples whose path never reached a non-specular surface contribute zeros.
+   */
+  readAov(name: 'albedo' | 'normal' | 'depth'): Promise<WavefrontRadianceImage>;
   readPixels(): Promise<WavefrontPixelImage>;
   getSnapshot(): WavefrontRendererSnapshot;
   destroy(): void;

@@ -1,17 +1,17 @@
 import { GpuRendererError } from '../errors/gpu-renderer-error.ts';
 import { requireInteger } from '../errors/validate.ts';
+import { queueCounterCount, queueCounterSlots, rendererWavefrontComputeWorkgroupSize, russianRouletteStartDepth } from '../gpu-layout/constants.ts';
 import {
-  russianRouletteStartDepth,
   bvhNodeLayout,
-  materialLayout,
+  materialCoreLayout,
   pathStateLayout,
-  queueCounterCount,
-  queueCounterSlots,
+  primitiveLayout,
+  rayWorkItemLayout,
   rendererWavefrontAccumulationTexelBytes,
-  rendererWavefrontComputeWorkgroupSize,
+  sampleRecordLayout,
+  shadingWorkItemLayout,
   shadowRayLayout,
-  triangleAttributesLayout,
-  triangleLayout,
+  surfaceRecordLayout,
 } from '../gpu-layout/records.ts';
 import { fieldOf, type StructFieldLayout, type StructLayout } from '../gpu-layout/struct-layout.ts';
 import { mediumStackLimit } from '../transport/medium-stack.ts';
@@ -97,11 +97,16 @@ export interface RayTracingRenderPlan {
       readonly strategy: 'tile-bounded-ping-pong';
       readonly queueClass: string;
       readonly tileSize: number;
-      /** Paths per queue: tileSize^2, independent of the output resolution. */
+      /** Paths per wave and entries per queue: tileSize^2, independent of the output resolution. */
       readonly capacity: number;
-      /** Two path queues alternate as input and output by bounce depth. */
-      readonly pathQueues: 2;
+      /** Two ray queues alternate as input and output by bounce depth. */
+      readonly rayQueues: 2;
       readonly pathRecordBytes: number;
+      readonly rayRecordBytes: number;
+      /** Intersection appends hits at the front and escaped rays at the back of one shading queue. */
+      readonly shadingQueue: 'hits-front-escaped-back';
+      readonly hitRecordBytes: number;
+      readonly surfaceRecordBytes: number;
       readonly shadowQueueCapacity: number;
       readonly shadowRecordBytes: number;
       readonly counterSlots: typeof queueCounterSlots;
@@ -109,18 +114,23 @@ export interface RayTracingRenderPlan {
       readonly workgroupSize: number;
     };
     readonly contracts: {
-      /** Ray and path state: PathState (it also carries the closest hit). */
+      /** The persistent state of a path (throughput, pixel, sample index, MIS and cone data). */
+      readonly path: RecordContract;
+      /** A ray waiting for closest-hit intersection. */
       readonly ray: RecordContract;
-      /** The hit sub-fields of PathState written by the extension kernel. */
-      readonly hit: RecordContract & { readonly fields: readonly StructFieldLayout[] };
+      /** What intersection hands to shading: direction, barycentrics, instance and triangle. */
+      readonly hit: RecordContract;
       readonly shadowRay: RecordContract;
+      /** Material evaluation's compact per-hit BSDF parameters. */
       readonly surface: RecordContract;
       readonly material: RecordContract;
+      /** A path sample's radiance and first-hit AOVs. */
+      readonly sample: RecordContract;
       readonly medium: {
         readonly name: 'Medium';
         readonly version: number;
         readonly layout: StructLayout;
-        /** The PathState field holding the innermost medium id (0 = none). */
+        /** The PathState field holding the nested medium stack (four 8-bit ids, innermost low). */
         readonly field: StructFieldLayout;
         readonly stackLimit: number;
       };
@@ -145,16 +155,16 @@ export interface RayTracingRenderPlan {
 
 const contract = (layout: StructLayout): RecordContract => ({ name: layout.name, version: layout.version, layout, bytes: layout.size });
 
-const hitFieldNames = ['hitT', 'hitPrimitive', 'hitU', 'hitV'] as const;
-
 const stages: readonly Omit<RenderPlanStage, 'order'>[] = [
   { key: 'snapshotIngest', label: 'Ingest the stable visual snapshot', dependsOn: [], tracesRays: false },
   { key: 'accelerationUpdate', label: 'Update the acceleration structure', dependsOn: ['snapshotIngest'], tracesRays: false },
   { key: 'primaryRays', label: 'Generate camera rays per tile', dependsOn: ['accelerationUpdate'], tracesRays: true },
-  { key: 'extension', label: 'Trace closest hits', dependsOn: ['primaryRays'], tracesRays: true },
-  { key: 'shade', label: 'Resolve surfaces and materials, sample BSDF continuations', dependsOn: ['extension'], tracesRays: false },
-  { key: 'shadowRays', label: 'Trace next-event-estimation shadow rays', dependsOn: ['shade'], tracesRays: true },
-  { key: 'accumulate', label: 'Accumulate radiance', dependsOn: ['shadowRays'], tracesRays: false },
+  { key: 'intersect', label: 'Trace closest hits, sorting paths into hit and escaped queues', dependsOn: ['primaryRays'], tracesRays: true },
+  { key: 'escaped', label: 'Add environment radiance to escaped paths', dependsOn: ['intersect'], tracesRays: false },
+  { key: 'materialEvaluation', label: 'Evaluate materials: geometry, textures, normal maps into BSDF parameters', dependsOn: ['intersect'], tracesRays: false },
+  { key: 'scatter', label: 'Sample lights and the BSDF, play Russian roulette, queue continuations', dependsOn: ['materialEvaluation'], tracesRays: false },
+  { key: 'shadowRays', label: 'Trace next-event-estimation shadow rays', dependsOn: ['scatter'], tracesRays: true },
+  { key: 'accumulate', label: 'Accumulate radiance and AOVs', dependsOn: ['escaped', 'shadowRays'], tracesRays: false },
   { key: 'resolve', label: 'Tone map and present', dependsOn: ['accumulate'], tracesRays: false },
 ];
 
@@ -191,7 +201,7 @@ export function createRayTracingRenderPlan(options: RayTracingRenderPlanOptions)
     accelerationStructure: {
       kind: 'binary-bvh',
       nodeContract: contract(bvhNodeLayout),
-      primitiveContract: contract(triangleLayout),
+      primitiveContract: contract(primitiveLayout),
       updatePolicy: { trigger: 'snapshot-geometry-revision', staticGeometry: 'build-once-reuse', changedGeometry: 'full-rebuild', refit: false },
     },
     wavefront: {
@@ -200,8 +210,12 @@ export function createRayTracingRenderPlan(options: RayTracingRenderPlanOptions)
         queueClass: rendererWorkerQueueClass,
         tileSize,
         capacity,
-        pathQueues: 2,
+        rayQueues: 2,
         pathRecordBytes: pathStateLayout.size,
+        rayRecordBytes: rayWorkItemLayout.size,
+        shadingQueue: 'hits-front-escaped-back',
+        hitRecordBytes: shadingWorkItemLayout.size,
+        surfaceRecordBytes: surfaceRecordLayout.size,
         // At most one shadow ray per path per bounce.
         shadowQueueCapacity: capacity,
         shadowRecordBytes: shadowRayLayout.size,
@@ -211,12 +225,14 @@ export function createRayTracingRenderPlan(options: RayTracingRenderPlanOptions)
         workgroupSize: rendererWavefrontComputeWorkgroupSize,
       },
       contracts: {
-        ray: contract(pathStateLayout),
-        hit: { ...contract(pathStateLayout), fields: hitFieldNames.map((name) => fieldOf(pathStateLayout, name)) },
+        path: contract(pathStateLayout),
+        ray: contract(rayWorkItemLayout),
+        hit: contract(shadingWorkItemLayout),
         shadowRay: contract(shadowRayLayout),
-        surface: contract(triangleAttributesLayout),
-        material: contract(materialLayout),
-        medium: { name: 'Medium', version: pathStateLayout.version, layout: pathStateLayout, field: fieldOf(pathStateLayout, 'mediumId'), stackLimit: mediumStackLimit },
+        surface: contract(surfaceRecordLayout),
+        material: contract(materialCoreLayout),
+        sample: contract(sampleRecordLayout),
+        medium: { name: 'Medium', version: pathStateLayout.version, layout: pathStateLayout, field: fieldOf(pathStateLayout, 'media'), stackLimit: mediumStackLimit },
         accumulation: { name: 'Accumulation', version: 1, format: 'rgba32float', bytes: rendererWavefrontAccumulationTexelBytes },
       },
       termination: {

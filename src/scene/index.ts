@@ -1,8 +1,10 @@
 export type * from './types.ts';
 export { normalizeWavefrontMesh, type NormalizedMesh } from './mesh.ts';
-export { normalizeMaterial, defaultMaterial, type NormalizedMaterial } from './material.ts';
-export { normalizeWavefrontSceneObject, packWavefrontSceneObjects, type NormalizedSceneObject } from './scene-object.ts';
-export { createWavefrontGpuMeshSource, type WavefrontGpuMeshSource } from './gpu-mesh-source.ts';
-export { packWavefrontMaterials } from './material-packing.ts';
+export { normalizeMaterial, normalizeTextureRef, defaultMaterial, type NormalizedMaterial, type NormalizedTextureRef } from './material.ts';
+export { normalizeWavefrontSceneObject, type NormalizedSceneObject } from './scene-object.ts';
+export { normalizeWavefrontInstance, type NormalizedInstance } from './instance.ts';
+export { normalizeWavefrontScene, type NormalizedScene } from './normalize-scene.ts';
+export { textureTransformRows, applyUvTransform, type UvTransformRows } from './texture-transform.ts';
+export { maxCoordinateMagnitude, maxRadiance } from './limits.ts';
 export { createCornellBoxScene } from './cornell-box.ts';
 export { parseSceneFile, validateSceneDescription } from './scene-file.ts';

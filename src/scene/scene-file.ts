@@ -10,10 +10,16 @@ import { describe } from '../errors/validate.ts';
 import type {
   WavefrontCameraInput,
   WavefrontEnvironmentInput,
+  WavefrontImageInput,
+  WavefrontInstanceInput,
   WavefrontMaterialInput,
   WavefrontMeshInput,
+  WavefrontSamplerInput,
   WavefrontSceneDescription,
   WavefrontSceneObjectInput,
+  WavefrontTextureInput,
+  WavefrontTextureRefInput,
+  WavefrontTextureTransformInput,
 } from './types.ts';
 
 type Json = Record<string, unknown>;
@@ -59,6 +65,12 @@ class SceneFileReader {
     return value as number[];
   }
 
+  integer(value: unknown, field: string, min: number): number {
+    const n = this.number(value, field, { min });
+    if (!Number.isInteger(n)) this.fail(field, `expected an integer, got ${n}`);
+    return n;
+  }
+
   string(value: unknown, field: string): string {
     if (typeof value !== 'string') this.fail(field, `expected a string, got ${describe(value)}`);
     return value;
@@ -88,10 +100,22 @@ function pick<T>(src: Json, field: string, readers: { [K in keyof T]-?: (value: 
   return out as T;
 }
 
-const sceneKeys = ['camera', 'environment', 'meshes', 'sceneObjects'] as const;
-const cameraKeys = ['position', 'target', 'up', 'fovYDegrees'] as const;
-const materialKeys = ['baseColorFactor', 'metallicFactor', 'roughnessFactor', 'emissiveFactor', 'emissiveStrength', 'ior', 'doubleSided'] as const;
-const meshKeys = ['id', 'positions', 'indices', 'normals', 'uvs', 'material', 'emission'] as const;
+const sceneKeys = ['camera', 'environment', 'meshes', 'instances', 'materials', 'textures', 'images', 'sceneObjects', 'lights'] as const;
+const cameraKeys = ['type', 'position', 'target', 'up', 'fovYDegrees', 'orthographicHeight'] as const;
+const textureSlots = [
+  'baseColorTexture', 'metallicRoughnessTexture', 'normalTexture', 'occlusionTexture', 'emissiveTexture', 'specularTexture', 'specularColorTexture',
+  'transmissionTexture', 'thicknessTexture', 'clearcoatTexture', 'clearcoatRoughnessTexture', 'clearcoatNormalTexture', 'sheenColorTexture',
+  'sheenRoughnessTexture', 'iridescenceTexture', 'iridescenceThicknessTexture', 'anisotropyTexture', 'diffuseTransmissionTexture',
+  'diffuseTransmissionColorTexture',
+] as const;
+const scalarFactors = [
+  'metallicFactor', 'roughnessFactor', 'emissiveStrength', 'ior', 'alphaCutoff', 'specularFactor', 'transmissionFactor', 'thicknessFactor',
+  'attenuationDistance', 'clearcoatFactor', 'clearcoatRoughnessFactor', 'sheenRoughnessFactor', 'dispersion', 'iridescenceFactor', 'iridescenceIor',
+  'iridescenceThicknessMinimum', 'iridescenceThicknessMaximum', 'anisotropyStrength', 'anisotropyRotation', 'diffuseTransmissionFactor',
+] as const;
+const colorFactors = ['emissiveFactor', 'specularColorFactor', 'attenuationColor', 'sheenColorFactor', 'diffuseTransmissionColorFactor'] as const;
+const materialKeys = ['name', 'baseColorFactor', 'doubleSided', 'alphaMode', ...scalarFactors, ...colorFactors, ...textureSlots] as const;
+const meshKeys = ['id', 'positions', 'indices', 'normals', 'tangents', 'uvs', 'uvs1', 'colors', 'material', 'emission'] as const;
 const sceneObjectKeys = ['type', 'center', 'radius', 'min', 'max', 'color', 'emission', 'roughness', 'metallic', 'ior', 'materialKind'] as const;
 
 /**
@@ -130,10 +154,15 @@ function validate(value: unknown, r: SceneFileReader): WavefrontSceneDescription
     const o = r.object(v, f, cameraKeys);
     for (const key of ['position', 'target'] as const) if (o[key] === undefined) r.fail(join(f, key), 'is required');
     return pick<WavefrontCameraInput>(o, f, {
+      type: (x, g) => {
+        if (x !== 'perspective' && x !== 'orthographic') r.fail(g, `expected "perspective" or "orthographic", got ${describe(x)}`);
+        return x;
+      },
       position: vec3,
       target: vec3,
       up: vec3,
       fovYDegrees: (x, g) => r.number(x, g, { min: 0, max: 180, exclusiveMin: true }),
+      orthographicHeight: (x, g) => r.number(x, g, { min: 0, exclusiveMin: true }),
     });
   };
 
@@ -143,16 +172,83 @@ function validate(value: unknown, r: SceneFileReader): WavefrontSceneDescription
     return { color: vec3(o.color, join(f, 'color')) };
   };
 
-  const material = (v: unknown, f: string): WavefrontMaterialInput =>
-    pick<WavefrontMaterialInput>(r.object(v, f, materialKeys), f, {
-      baseColorFactor: (x, g) => r.numbers(x, g, [3, 4]),
-      metallicFactor: unit,
-      roughnessFactor: unit,
-      emissiveFactor: vec3,
-      emissiveStrength: nonNegative,
-      ior: (x, g) => r.number(x, g),
-      doubleSided: (x, g) => r.boolean(x, g),
+  const textureRef = (v: unknown, f: string): WavefrontTextureRefInput => {
+    const o = r.object(v, f, ['index', 'texCoord', 'transform', 'scale', 'strength']);
+    if (o.index === undefined) r.fail(join(f, 'index'), 'is required');
+    return pick<WavefrontTextureRefInput>(o, f, {
+      index: (x, g) => r.integer(x, g, 0),
+      texCoord: (x, g) => r.integer(x, g, 0),
+      transform: (x, g) =>
+        pick<WavefrontTextureTransformInput>(r.object(x, g, ['offset', 'rotation', 'scale', 'texCoord']), g, {
+          offset: (y, h) => r.numbers(y, h, [2]),
+          rotation: (y, h) => r.number(y, h),
+          scale: (y, h) => r.numbers(y, h, [2]),
+          texCoord: (y, h) => r.integer(y, h, 0),
+        }),
+      scale: (x, g) => r.number(x, g),
+      strength: (x, g) => r.number(x, g),
     });
+  };
+
+  const material = (v: unknown, f: string): WavefrontMaterialInput => {
+    const o = r.object(v, f, materialKeys);
+    const out: Record<string, unknown> = {};
+    for (const key of Object.keys(o)) {
+      const g = join(f, key);
+      if (key === 'name') out[key] = r.string(o[key], g);
+      else if (key === 'baseColorFactor') out[key] = r.numbers(o[key], g, [3, 4]);
+      else if (key === 'doubleSided') out[key] = r.boolean(o[key], g);
+      else if (key === 'alphaMode') {
+        if (o[key] !== 'OPAQUE' && o[key] !== 'MASK' && o[key] !== 'BLEND') r.fail(g, `expected "OPAQUE", "MASK" or "BLEND", got ${describe(o[key])}`);
+        out[key] = o[key];
+      } else if ((colorFactors as readonly string[]).includes(key)) out[key] = vec3(o[key], g);
+      else if ((scalarFactors as readonly string[]).includes(key)) out[key] = key === 'metallicFactor' || key === 'roughnessFactor' ? unit(o[key], g) : key === 'emissiveStrength' ? nonNegative(o[key], g) : r.number(o[key], g);
+      else out[key] = textureRef(o[key], g);
+    }
+    return out as WavefrontMaterialInput;
+  };
+
+  const sampler = (v: unknown, f: string): WavefrontSamplerInput => {
+    const o = r.object(v, f, ['wrapS', 'wrapT', 'magFilter', 'minFilter']);
+    const oneOf = <T extends string>(allowed: readonly T[]) => (x: unknown, g: string): T => {
+      if (!allowed.includes(x as T)) r.fail(g, `expected one of ${allowed.join(', ')}, got ${describe(x)}`);
+      return x as T;
+    };
+    const wrap = oneOf(['repeat', 'clamp-to-edge', 'mirrored-repeat'] as const);
+    return pick<WavefrontSamplerInput>(o, f, {
+      wrapS: wrap,
+      wrapT: wrap,
+      magFilter: oneOf(['nearest', 'linear'] as const),
+      minFilter: oneOf(['nearest', 'linear', 'nearest-mipmap-nearest', 'linear-mipmap-nearest', 'nearest-mipmap-linear', 'linear-mipmap-linear'] as const),
+    });
+  };
+
+  const texture = (v: unknown, f: string): WavefrontTextureInput => {
+    const o = r.object(v, f, ['name', 'image', 'sampler']);
+    if (o.image === undefined) r.fail(join(f, 'image'), 'is required');
+    return pick<WavefrontTextureInput>(o, f, {
+      name: (x, g) => r.string(x, g),
+      image: (x, g) => r.integer(x, g, 0),
+      sampler,
+    });
+  };
+
+  const image = (v: unknown, f: string): WavefrontImageInput => {
+    const o = r.object(v, f, ['width', 'height', 'data']);
+    for (const key of ['width', 'height', 'data'] as const) if (o[key] === undefined) r.fail(join(f, key), 'is required');
+    return { width: r.integer(o.width, join(f, 'width'), 1), height: r.integer(o.height, join(f, 'height'), 1), data: Uint8Array.from(r.numbers(o.data, join(f, 'data'))) };
+  };
+
+  const instance = (v: unknown, f: string): WavefrontInstanceInput => {
+    const o = r.object(v, f, ['id', 'mesh', 'transform', 'material']);
+    if (o.mesh === undefined) r.fail(join(f, 'mesh'), 'is required');
+    return pick<WavefrontInstanceInput>(o, f, {
+      id: (x, g) => (typeof x === 'number' ? r.number(x, g) : r.string(x, g)),
+      mesh: (x, g) => r.integer(x, g, 0),
+      transform: (x, g) => r.numbers(x, g, [16]),
+      material: (x, g) => r.integer(x, g, 0),
+    });
+  };
 
   const mesh = (v: unknown, f: string): WavefrontMeshInput => {
     const o = r.object(v, f, meshKeys);
@@ -162,8 +258,11 @@ function validate(value: unknown, r: SceneFileReader): WavefrontSceneDescription
       positions: (x, g) => r.numbers(x, g),
       indices: (x, g) => r.numbers(x, g),
       normals: (x, g) => r.numbers(x, g),
+      tangents: (x, g) => r.numbers(x, g),
       uvs: (x, g) => r.numbers(x, g),
-      material,
+      uvs1: (x, g) => r.numbers(x, g),
+      colors: (x, g) => r.numbers(x, g),
+      material: (x, g) => (typeof x === 'number' ? r.integer(x, g, 0) : material(x, g)),
       emission: vec4,
     });
   };
@@ -192,6 +291,12 @@ function validate(value: unknown, r: SceneFileReader): WavefrontSceneDescription
     camera,
     environment,
     meshes: list(mesh),
+    instances: list(instance),
+    materials: list(material),
+    textures: list(texture),
+    images: list(image),
     sceneObjects: list(sceneObject),
+    // Lights are validated by the renderer, which names the field of any problem.
+    lights: (x, g) => r.array(x, g) as never,
   });
 }

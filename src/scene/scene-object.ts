@@ -1,6 +1,5 @@
 import { fail, requireNumberInRange, requireVec } from '../errors/validate.ts';
-import { allocateStructArray, writeStruct } from '../gpu-layout/struct-layout.ts';
-import { SCENE_OBJECT_BOX, SCENE_OBJECT_SPHERE, sceneObjectLayout } from '../gpu-layout/records.ts';
+import { maxRadiance } from './limits.ts';
 import type { NormalizedMaterial } from './material.ts';
 import type { WavefrontSceneObjectInput } from './types.ts';
 
@@ -25,6 +24,9 @@ export function normalizeWavefrontSceneObject(input: WavefrontSceneObjectInput, 
     const e = requireVec(input.emission, 4, `${field}.emission`, code);
     e.forEach((c, i) => requireNumberInRange(c, `${field}.emission[${i}]`, { min: 0 }, code));
     emission = [e[0]! * e[3]!, e[1]! * e[3]!, e[2]! * e[3]!];
+    emission.forEach((c, i) => {
+      if (!(c <= maxRadiance)) fail(code, `${field}.emission`, `emitted radiance ${c} in channel ${i} exceeds the supported maximum ${maxRadiance}`);
+    });
   }
   const material: NormalizedMaterial = {
     baseColor: [colorIn[0]!, colorIn[1]!, colorIn[2]!, 1],
@@ -33,6 +35,8 @@ export function normalizeWavefrontSceneObject(input: WavefrontSceneObjectInput, 
     roughness: input.roughness === undefined ? 1 : requireNumberInRange(input.roughness, `${field}.roughness`, { min: 0, max: 1 }, code),
     ior: input.ior === undefined ? 1.5 : requireNumberInRange(input.ior, `${field}.ior`, { min: 1, max: 10 }, code),
     doubleSided: true,
+    alphaMode: 'OPAQUE',
+    alphaCutoff: 0.5,
   };
   if (input.type === 'sphere') {
     const center = requireVec(input.center, 3, `${field}.center`, code) as [number, number, number];
@@ -48,18 +52,3 @@ export function normalizeWavefrontSceneObject(input: WavefrontSceneObjectInput, 
   return fail(code, `${field}.type`, `expected "sphere" or "box", got ${JSON.stringify((input as { type?: unknown }).type)}`);
 }
 
-/** SceneObject records; `materialIds[i]` is the material slot of object i. */
-export function packWavefrontSceneObjects(objects: readonly NormalizedSceneObject[], capacity = objects.length, materialIds?: readonly number[]): ArrayBuffer {
-  if (capacity < objects.length) throw new RangeError(`capacity ${capacity} is below the object count ${objects.length}`);
-  const buffer = allocateStructArray(sceneObjectLayout, capacity);
-  const view = new DataView(buffer);
-  objects.forEach((o, i) => {
-    writeStruct(sceneObjectLayout, view, i, {
-      a: o.a,
-      b: o.b,
-      kind: o.type === 'sphere' ? SCENE_OBJECT_SPHERE : SCENE_OBJECT_BOX,
-      materialId: materialIds ? materialIds[i]! : i,
-    });
-  });
-  return buffer;
-}

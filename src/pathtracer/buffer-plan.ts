@@ -1,0 +1,112 @@
+import { GpuRendererError } from '../errors/gpu-renderer-error.ts';
+import { dispatchArgWords, dynamicUniformStride, queueCounterCount } from '../gpu-layout/constants.ts';
+import {
+  alphaPrimitiveLayout,
+  bvhNodeLayout,
+  frameUniformsLayout,
+  instanceLayout,
+  lightRecordLayout,
+  pathStateLayout,
+  primitiveLayout,
+  rayWorkItemLayout,
+  resolveUniformsLayout,
+  sampleRecordLayout,
+  shadingWorkItemLayout,
+  shadowRayLayout,
+  surfaceRecordLayout,
+  vertexLayout,
+} from '../gpu-layout/records.ts';
+import type { PathTracerBindingName } from '../gpu-layout/bindings.ts';
+
+/** Which memory statistic a buffer counts towards. */
+export type BufferCategory = 'scene' | 'queue' | 'frame';
+
+export interface PlannedBuffer {
+  bytes: number;
+  category: BufferCategory;
+  /** The input responsible for its size (named in SCENE_TOO_LARGE errors). */
+  field: string;
+  /** What it holds, for error messages. */
+  what: string;
+}
+
+/** Buffers of the path tracer that are not bindings of its kernels. */
+export type AuxiliaryBufferName = 'displayUniforms' | 'displayPixels' | 'timestamps';
+
+export type PlannedBufferName = Exclude<PathTracerBindingName, 'textureAtlas'> | AuxiliaryBufferName;
+
+/** Sizes the plan is computed from: known before the BVH is built or anything is allocated. */
+export interface BufferPlanInput {
+  width: number;
+  height: number;
+  tileSize: number;
+  maxDepth: number;
+  aovs: boolean;
+  vertexCount: number;
+  indexCount: number;
+  /** Triangles over all instances plus analytic shapes. */
+  primitiveCount: number;
+  alphaPrimitiveCount: number;
+  instanceCount: number;
+  lightCount: number;
+  /** Vec4 cells of the material heap. */
+  materialCells: number;
+}
+
+export function queueCapacity(width: number, height: number, tileSize: number): number {
+  return Math.min(tileSize * tileSize, width * height);
+}
+
+/** Byte size of every buffer a render needs, computed before anything is allocated. */
+export function planBuffers(i: BufferPlanInput): Record<PlannedBufferName, PlannedBuffer> {
+  const capacity = queueCapacity(i.width, i.height, i.tileSize);
+  const pixels = i.width * i.height;
+  const n = Math.max(1, i.primitiveCount);
+  const scene = (bytes: number, what: string, field = 'meshes'): PlannedBuffer => ({ bytes, category: 'scene', field, what });
+  const queue = (bytes: number, what: string): PlannedBuffer => ({ bytes, category: 'queue', field: 'tileSize', what });
+  const frame = (bytes: number, what: string): PlannedBuffer => ({ bytes, category: 'frame', field: 'width', what });
+  return {
+    primitives: scene(n * primitiveLayout.size, 'the primitive buffer'),
+    // A binary BVH over n primitives has at most 2n - 1 nodes.
+    bvhNodes: scene((2 * n - 1) * bvhNodeLayout.size, 'the BVH node buffer'),
+    bvhParents: scene((2 * n - 1) * 4, 'the BVH parent links'),
+    alphaPrimitives: scene(Math.max(1, i.alphaPrimitiveCount) * alphaPrimitiveLayout.size, 'the alpha-test records'),
+    instances: scene(Math.max(1, i.instanceCount) * instanceLayout.size, 'the instance buffer', 'instances'),
+    indices: scene(Math.max(1, i.indexCount) * 4, 'the index buffer'),
+    vertices: scene(Math.max(1, i.vertexCount) * vertexLayout.size, 'the vertex buffer'),
+    materials: scene(Math.max(1, i.materialCells) * 16, 'the material heap', 'materials'),
+    lights: scene(Math.max(1, i.lightCount) * lightRecordLayout.size, 'the light records'),
+    frame: frame(frameUniformsLayout.size, 'the frame constants'),
+    paths: queue(capacity * pathStateLayout.size, 'the path states'),
+    rays: queue(2 * capacity * rayWorkItemLayout.size, 'the ray queues'),
+    shadingQueue: queue(capacity * shadingWorkItemLayout.size, 'the shading queue'),
+    surfaces: queue(capacity * surfaceRecordLayout.size, 'the surface records'),
+    shadowRays: queue(capacity * shadowRayLayout.size, 'the shadow-ray queue'),
+    counters: queue(queueCounterCount * 4, 'the queue counters'),
+    samples: queue(capacity * sampleRecordLayout.size, 'the sample records'),
+    dispatchArgs: queue(dispatchArgWords * 4, 'the indirect dispatch arguments'),
+    wave: queue(maxWavesPerSubmission * dynamicUniformStride, 'the wave constants'),
+    bounce: queue((i.maxDepth + 1) * dynamicUniformStride, 'the bounce constants'),
+    film: frame(pixels * 16, 'the accumulation buffer (width x height)'),
+    filmAovs: frame((i.aovs ? pixels : 1) * 32, 'the AOV accumulation (width x height)'),
+    displayUniforms: frame(resolveUniformsLayout.size, 'the display constants'),
+    displayPixels: frame(pixels * 4, 'the display pixels (width x height)'),
+    timestamps: frame(16, 'the timestamp results'),
+  };
+}
+
+/** Most waves (tile x sample) encoded into one command buffer, bounding submission size. */
+export const maxWavesPerSubmission = 16;
+
+/**
+ * Rejects, before any allocation, a scene or frame whose buffers exceed what one binding of this
+ * device holds, naming the input responsible. (Scenes are refused, never truncated.)
+ */
+export function checkBufferLimits(limits: GPUSupportedLimits, plan: Record<string, PlannedBuffer>): void {
+  const max = Math.min(limits.maxStorageBufferBindingSize, limits.maxBufferSize);
+  for (const b of Object.values(plan)) {
+    if (b.bytes > max) {
+      throw new GpuRendererError('SCENE_TOO_LARGE', `${b.what} needs ${b.bytes} bytes but this device binds at most ${max} bytes per storage buffer`, { field: b.field });
+    }
+  }
+}

@@ -1,0 +1,57 @@
+import { dispatchArgSlots, dynamicUniformStride, rendererWavefrontComputeWorkgroupSize } from '../gpu-layout/constants.ts';
+import type { KernelBindGroups } from './bind-groups.ts';
+import type { WavefrontKernelName } from './pipelines.ts';
+import type { Wave } from './tiling.ts';
+
+/** Dynamic uniform offsets of the current wave and bounce. */
+interface Offsets {
+  wave: number;
+  bounce: number;
+}
+
+/**
+ * Encodes waves into a compute pass: per wave, camera rays, then per bounce (pbrt-v4's wavefront
+ * stages) intersection -> escaped rays and material evaluation -> scatter -> shadow rays, all sized
+ * by indirect dispatches whose arguments the GPU writes from its own queue lengths, then the
+ * accumulation. `waves[i]` uses wave-uniform slot i; bounce d uses bounce slot d.
+ */
+export class WavefrontEncoder {
+  private readonly kernels: Record<WavefrontKernelName, KernelBindGroups>;
+  private readonly dispatchArgs: GPUBuffer;
+
+  constructor(kernels: Record<WavefrontKernelName, KernelBindGroups>, dispatchArgs: GPUBuffer) {
+    this.kernels = kernels;
+    this.dispatchArgs = dispatchArgs;
+  }
+
+  private dispatch(pass: GPUComputePassEncoder, name: WavefrontKernelName, offsets: Offsets, work: number | { indirect: number }): void {
+    const k = this.kernels[name];
+    pass.setPipeline(k.pipeline);
+    k.groups.forEach((group, g) => pass.setBindGroup(g, group, k.dynamic[g]!.map((d) => offsets[d as keyof Offsets])));
+    if (typeof work === 'number') pass.dispatchWorkgroups(work);
+    else pass.dispatchWorkgroupsIndirect(this.dispatchArgs, work.indirect * 4);
+  }
+
+  encode(pass: GPUComputePassEncoder, waves: readonly Wave[], maxDepth: number): void {
+    const wg = rendererWavefrontComputeWorkgroupSize;
+    waves.forEach((w, i) => {
+      const pixels = w.tileSize[0] * w.tileSize[1];
+      const o: Offsets = { wave: i * dynamicUniformStride, bounce: 0 };
+      this.dispatch(pass, 'camera', o, Math.ceil(pixels / wg));
+      for (let d = 0; d <= maxDepth; d++) {
+        o.bounce = d * dynamicUniformStride;
+        this.dispatch(pass, 'prepareIntersect', o, 1);
+        this.dispatch(pass, 'intersect', o, { indirect: dispatchArgSlots.intersect });
+        this.dispatch(pass, 'prepareShading', o, 1);
+        this.dispatch(pass, 'escaped', o, { indirect: dispatchArgSlots.misses });
+        this.dispatch(pass, 'evaluateMaterials', o, { indirect: dispatchArgSlots.hits });
+        this.dispatch(pass, 'scatter', o, { indirect: dispatchArgSlots.hits });
+        if (d < maxDepth) {
+          this.dispatch(pass, 'prepareShadow', o, 1);
+          this.dispatch(pass, 'shadow', o, { indirect: dispatchArgSlots.shadows });
+        }
+      }
+      this.dispatch(pass, 'accumulate', o, Math.ceil(pixels / wg));
+    });
+  }
+}

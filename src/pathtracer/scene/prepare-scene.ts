@@ -1,0 +1,76 @@
+import { buildBvhAsync } from '../../accel/bvh-builder.ts';
+import { bvhParentLinks, packPrimitives, packWavefrontBvhNodes } from '../../accel/triangle-packing.ts';
+import { Vec4Heap } from '../../gpu-layout/vec4-heap.ts';
+import { buildTextureAtlas, type TextureAtlas } from '../../materials/textures/texture-atlas.ts';
+import type { AtlasLimits } from '../../materials/textures/atlas-packer.ts';
+import type { NormalizedScene } from '../../scene/normalize-scene.ts';
+import { flattenPrimitives } from './flatten-primitives.ts';
+import { buildLightTable } from './light-table.ts';
+import { packInstances } from './pack-instances.ts';
+import { packMaterials, textureUsages } from './pack-materials.ts';
+import { packVertexStreams } from './pack-vertices.ts';
+
+/** Everything the path tracer uploads for a scene, packed on the CPU. */
+export interface PreparedScene {
+  primitives: ArrayBuffer;
+  bvhNodes: ArrayBuffer;
+  bvhParents: Uint32Array;
+  alphaPrimitives: ArrayBuffer;
+  instances: ArrayBuffer;
+  indices: Uint32Array;
+  vertices: ArrayBuffer;
+  materials: ArrayBuffer;
+  atlas: TextureAtlas;
+  lights: ArrayBuffer;
+  lightCount: number;
+  lightPower: number;
+  primitiveCount: number;
+  triangleCount: number;
+  bvh: { nodeCount: number; depth: number; sahCost: number; buildTimeMs: number };
+  sceneCenter: [number, number, number];
+  sceneRadius: number;
+  /** Which optional shader features the scene needs (the rest are compiled out). */
+  uses: { analyticShapes: boolean; alphaTest: boolean; textures: boolean; emissiveLights: boolean };
+  warnings: string[];
+}
+
+export async function prepareScene(scene: NormalizedScene, limits: AtlasLimits, options: { signal?: AbortSignal } = {}): Promise<PreparedScene> {
+  const warnings: string[] = [];
+  const heap = new Vec4Heap();
+  const objectMaterials = scene.sceneObjects.map((o) => o.material);
+  const usages = textureUsages([...scene.materials, ...objectMaterials]);
+  const atlas = buildTextureAtlas(scene, usages, heap, limits, warnings);
+  const infoOffset = (texture: number, srgb: boolean): number => atlas.infoOffset(texture, srgb);
+  const materialOffsets = packMaterials(heap, scene.materials, infoOffset);
+  const objectMaterialOffsets = packMaterials(heap, objectMaterials, infoOffset);
+  const streams = packVertexStreams(scene.meshes);
+  const lights = buildLightTable(scene, infoOffset);
+  const flat = flattenPrimitives(scene, infoOffset);
+  const bvh = await buildBvhAsync(flat.boundsTriangles, options.signal ? { signal: options.signal } : {});
+  const nodes = packWavefrontBvhNodes(bvh);
+  const { min, max } = flat.bounds;
+  const empty = scene.triangleCount + scene.sceneObjects.length === 0;
+  const sceneCenter: [number, number, number] = [0.5 * (min[0] + max[0]), 0.5 * (min[1] + max[1]), 0.5 * (min[2] + max[2])];
+  const sceneRadius = empty ? 1 : Math.max(1e-6, 0.5 * Math.hypot(max[0] - min[0], max[1] - min[1], max[2] - min[2]));
+  return {
+    primitives: packPrimitives(flat, bvh.triangleOrder),
+    bvhNodes: nodes,
+    bvhParents: bvhParentLinks(nodes, bvh.nodeCount),
+    alphaPrimitives: flat.alphaPrimitives,
+    instances: packInstances(scene, streams, materialOffsets, objectMaterialOffsets, lights.lightBase),
+    indices: streams.indices,
+    vertices: streams.vertices,
+    materials: heap.finish(),
+    atlas,
+    lights: lights.records,
+    lightCount: lights.count,
+    lightPower: lights.totalPower,
+    primitiveCount: flat.count,
+    triangleCount: scene.triangleCount,
+    bvh: { nodeCount: bvh.nodeCount, depth: bvh.depth, sahCost: bvh.sahCost, buildTimeMs: bvh.buildTimeMs },
+    sceneCenter,
+    sceneRadius,
+    uses: { analyticShapes: scene.sceneObjects.length > 0, alphaTest: flat.alphaCount > 0, textures: usages.length > 0, emissiveLights: lights.count > 0 },
+    warnings,
+  };
+}

@@ -1,0 +1,15 @@
+/**
+ * Magnitudes the renderer accepts, so that finite inputs cannot overflow float32 arithmetic on the
+ * GPU into Inf or NaN (which would otherwise surface as invalid samples or non-finite pixels far
+ * from their cause). Inputs beyond them get a typed error naming the field.
+ */
+
+/** Coordinates: squared distances and cross products stay finite in float32 (1e18^2 < 3.4e38). */
+export const maxCoordinateMagnitude = 1e18;
+
+/**
+ * Emitted and environment radiance per channel: the film sums float32 contributions of many samples
+ * (path weights and 1 / pdf factors multiply radiance), so radiance keeps 18 orders of magnitude of
+ * headroom below float32's maximum (3.4e38).
+ */
+export const maxRadiance = 1e20;
