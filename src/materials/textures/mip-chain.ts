@@ -9,7 +9,7 @@
  * (IEC 61966-2-1:1999), averaged, re-encoded and rounded; linear data and alpha are averaged as
  * stored (glTF 2.0 section 3.9: alpha is linear in every texture).
  */
-import { linearToSrgb, srgbToLinear } from '../../post/tone-mapping.ts';
+import { srgbToLinear } from '../../post/tone-mapping.ts';
 import { fullMipCount, mipLevelSize } from './atlas-layout.ts';
 
 /** How the RGB channels of an image are encoded (alpha is always linear). */
@@ -61,9 +61,22 @@ function plan(sourceWidth: number, sourceHeight: number, width: number, height: 
   };
 }
 
+/**
+ * linearBounds[k] = the linear value whose sRGB encoding is (k + 0.5) / 255: round(255 srgb(x)) is
+ * the number of bounds <= x (the curve is increasing), found by binary search instead of a pow.
+ */
+const linearBounds = Float64Array.from({ length: 255 }, (_, k) => srgbToLinear((k + 0.5) / 255));
+
 function encodeByte(value: number, srgb: boolean): number {
-  const v = srgb ? linearToSrgb(value) : value;
-  return Math.min(255, Math.max(0, Math.round(v * 255)));
+  if (!srgb) return Math.min(255, Math.max(0, Math.round(value * 255)));
+  let lo = 0;
+  let hi = 255;
+  while (lo < hi) {
+    const mid = (lo + hi) >> 1;
+    if (linearBounds[mid]! <= value) lo = mid + 1;
+    else hi = mid;
+  }
+  return lo;
 }
 
 /**
