@@ -1,14 +1,14 @@
 import type { GpuRendererErrorCode } from '../errors/gpu-renderer-error.ts';
 import { describe, fail, isArrayLike, requireFiniteNumber, requireNumberInRange } from '../errors/validate.ts';
 import { maxRadiance } from './limits.ts';
-import { textureTransformRows, type UvTransformRows } from './texture-transform.ts';
+import { identityTextureTransform, textureTransformMatrix, type TextureTransformRows } from '../materials/textures/texture-transform.ts';
 import type { Vec4Input, WavefrontAlphaMode, WavefrontMaterialInput, WavefrontTextureRefInput } from './types.ts';
 
 /** A validated texture reference: which texture, which uv set, the uv transform, scale/strength. */
 export interface NormalizedTextureRef {
   texture: number;
   texCoord: 0 | 1;
-  transform: UvTransformRows;
+  transform: TextureTransformRows;
   /** normalTexture.scale or occlusionTexture.strength (1 otherwise). */
   scale: number;
 }
@@ -126,11 +126,11 @@ export function normalizeTextureRef(input: WavefrontTextureRefInput, field: stri
   }
   const t = input.transform;
   let texCoord = input.texCoord ?? 0;
-  let transform = textureTransformRows(undefined);
+  let transform = identityTextureTransform();
   if (t !== undefined) {
     if (typeof t !== 'object' || t === null) fail(code, `${field}.transform`, 'expected { offset?, rotation?, scale?, texCoord? }');
     const rotation = t.rotation === undefined ? 0 : requireFiniteNumber(t.rotation, `${field}.transform.rotation`, code);
-    transform = textureTransformRows({ offset: vec2(t.offset, `${field}.transform.offset`, [0, 0], code), rotation, scale: vec2(t.scale, `${field}.transform.scale`, [1, 1], code) });
+    transform = textureTransformMatrix({ offset: vec2(t.offset, `${field}.transform.offset`, [0, 0], code), rotation, scale: vec2(t.scale, `${field}.transform.scale`, [1, 1], code) });
     if (t.texCoord !== undefined) texCoord = t.texCoord;
   }
   if (texCoord !== 0 && texCoord !== 1) fail(code, `${field}.texCoord`, `uv set ${describe(texCoord)} is not supported (0 or 1)`);

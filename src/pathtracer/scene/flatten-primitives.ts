@@ -3,7 +3,7 @@ import { alphaPrimitiveLayout } from '../../gpu-layout/records.ts';
 import { allocateStructArray, writeStruct } from '../../gpu-layout/struct-layout.ts';
 import type { NormalizedInstance } from '../../scene/instance.ts';
 import type { NormalizedScene } from '../../scene/normalize-scene.ts';
-import { applyUvTransform } from '../../scene/texture-transform.ts';
+import { applyTextureTransform } from '../../materials/textures/texture-transform.ts';
 import type { TextureInfoOffsets } from './pack-materials.ts';
 
 /**
@@ -92,7 +92,7 @@ export function flattenPrimitives(scene: NormalizedScene, infoOffset: TextureInf
       shape[k] = PRIMITIVE_SHAPE_TRIANGLE;
       if (alpha) {
         const vertex = (c: number): number => mesh.indices[3 * t + c]!;
-        const uv = (c: number): [number, number] => (uvs && texture ? applyUvTransform(texture.transform, uvs[2 * vertex(c)]!, uvs[2 * vertex(c) + 1]!) : [0, 0]);
+        const uv = (c: number): [number, number] => (uvs && texture ? applyTextureTransform(texture.transform, uvs[2 * vertex(c)]!, uvs[2 * vertex(c) + 1]!) : [0, 0]);
         const vertexAlpha = (c: number): number => (mesh.colors ? mesh.colors[4 * vertex(c) + 3]! : 1);
         writeStruct(alphaPrimitiveLayout, alphaView, alphaIndex, {
           uv0: uv(0),

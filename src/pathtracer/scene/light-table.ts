@@ -6,7 +6,7 @@ import { buildAliasTable } from '../../lighting/alias-table.ts';
 import { luminance } from '../../lighting/emissive-lights.ts';
 import { isEmissive } from '../../scene/material.ts';
 import type { NormalizedScene } from '../../scene/normalize-scene.ts';
-import { applyUvTransform } from '../../scene/texture-transform.ts';
+import { applyTextureTransform } from '../../materials/textures/texture-transform.ts';
 import { instanceMaterial, transformPoint } from './flatten-primitives.ts';
 import type { TextureInfoOffsets } from './pack-materials.ts';
 
@@ -69,7 +69,7 @@ export function buildLightTable(scene: NormalizedScene, infoOffset: TextureInfoO
       const uv = (j: number): [number, number] => {
         if (!uvs || !texture) return [0, 0];
         const v = mesh.indices[3 * t + corner[j]!]!;
-        return applyUvTransform(texture.transform, uvs[2 * v]!, uvs[2 * v + 1]!);
+        return applyTextureTransform(texture.transform, uvs[2 * v]!, uvs[2 * v + 1]!);
       };
       writeStruct(lightRecordLayout, view, k, {
         v0: [w[0]!, w[1]!, w[2]!],

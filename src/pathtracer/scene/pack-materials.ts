@@ -25,11 +25,9 @@ const alphaModeIds = { OPAQUE: ALPHA_MODE_OPAQUE, MASK: ALPHA_MODE_MASK, BLEND: 
 
 function packBinding(heap: Vec4Heap, ref: NormalizedTextureRef | undefined, srgb: boolean, infoOffset: TextureInfoOffsets): number {
   if (!ref) return INDEX_NONE;
-  const t = ref.transform;
   return heap.append(textureBindingLayout, {
-    transform0: [t[0], t[1], t[2]],
+    ...ref.transform,
     texture: infoOffset(ref.texture, srgb),
-    transform1: [t[3], t[4], t[5]],
     texCoord: ref.texCoord,
     scale: ref.scale,
     flags: srgb ? TEXTURE_BINDING_FLAG_SRGB : 0,
