@@ -21,3 +21,4 @@ export { encodePng, type Rgba8Image } from './png.ts';
 export { writePng } from './png-node.ts';
 export { wavefrontAovChannels, wavefrontAovNames, isWavefrontAovName, type WavefrontAovName } from './aovs.ts';
 export * from './files/index.ts';
+export * from './metrics/index.ts';
