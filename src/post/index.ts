@@ -22,3 +22,4 @@ export { writePng } from './png-node.ts';
 export { wavefrontAovChannels, wavefrontAovNames, isWavefrontAovName, type WavefrontAovName } from './aovs.ts';
 export * from './files/index.ts';
 export * from './metrics/index.ts';
+export * from './adaptive-sampling/index.ts';
