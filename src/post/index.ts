@@ -23,3 +23,4 @@ export { wavefrontAovChannels, wavefrontAovNames, isWavefrontAovName, type Wavef
 export * from './files/index.ts';
 export * from './metrics/index.ts';
 export * from './adaptive-sampling/index.ts';
+export { parseDuration, parseAovList } from './option-parsing.ts';
