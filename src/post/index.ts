@@ -24,3 +24,4 @@ export * from './files/index.ts';
 export * from './metrics/index.ts';
 export * from './adaptive-sampling/index.ts';
 export { parseDuration, parseAovList } from './option-parsing.ts';
+export * from './wavefront-denoise-validation.ts';
