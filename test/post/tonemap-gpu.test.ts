@@ -1,7 +1,7 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { composeShader } from '../../src/shaders/modules.ts';
-import { applyToneMapping, linearToSrgb, toneMappingModeIds, toneMappingNames } from '../../src/post/tone-mapping.ts';
+import { applyToneMapping, linearToSrgb, toneMappingModeIds } from '../../src/post/tone-mapping.ts';
 import { readBuffer, runCompute, testDevice, uploadBuffer } from '../helpers/gpu.ts';
 
 // For each input colour the kernel writes the three tone mappings and the sRGB encoding of the
@@ -43,8 +43,12 @@ function inputs(): Float32Array {
   return data;
 }
 
+// The modes tonemap.wgsl implements, in the order the kernel writes them. AgX is CPU-only until
+// TONE_MAPPING_AGX lands in the WGSL; then add it here and to the kernel above.
+const wgslModes = ['neutral', 'aces', 'linear'] as const;
+
 test('WGSL tone mapping and sRGB encoding equal the JS mirror', async () => {
-  assert.deepEqual(toneMappingModeIds, { neutral: 0, aces: 1, linear: 2 });
+  assert.deepEqual(toneMappingModeIds, { neutral: 0, aces: 1, linear: 2, agx: 3 });
   const device = await testDevice();
   const data = inputs();
   const n = data.length / 4;
@@ -55,7 +59,7 @@ test('WGSL tone mapping and sRGB encoding equal the JS mirror', async () => {
   for (let i = 0; i < n; i++) {
     const c = [data[4 * i], data[4 * i + 1], data[4 * i + 2]];
     const expected = [
-      ...toneMappingNames.map((mode) => applyToneMapping(c, mode)),
+      ...wgslModes.map((mode) => applyToneMapping(c, mode)),
       c.map((v) => linearToSrgb(Math.min(Math.max(v, 0), 1))),
     ];
     expected.forEach((e, k) => {
