@@ -11,3 +11,6 @@ export {
   type EnvironmentSampler,
   type EnvironmentSample,
 } from './environment-sampling.ts';
+export { decodeRadianceHdr, isRadianceHdr, type DecodedHdrImage } from './radiance-hdr.ts';
+export { decodeOpenExr, isOpenExr, type ExrLoaderLike, type ExrLoaderConstructor } from './openexr.ts';
+export { loadEnvironmentMap, type EnvironmentMapSource, type LoadEnvironmentMapOptions } from './load-environment-map.ts';
