@@ -14,3 +14,37 @@ export {
 export { decodeRadianceHdr, isRadianceHdr, type DecodedHdrImage } from './radiance-hdr.ts';
 export { decodeOpenExr, isOpenExr, type ExrLoaderLike, type ExrLoaderConstructor } from './openexr.ts';
 export { loadEnvironmentMap, type EnvironmentMapSource, type LoadEnvironmentMapOptions } from './load-environment-map.ts';
+export type { WavefrontAreaLightInput, WavefrontRectangleLightInput, WavefrontDiskLightInput, WavefrontSphereLightInput } from './light-types.ts';
+export {
+  validatePunctualLight,
+  punctualLightIncident,
+  packPunctualLights,
+  punctualLightLayout,
+  spotAngleScaleOffset,
+  PUNCTUAL_LIGHT_POINT,
+  PUNCTUAL_LIGHT_SPOT,
+  PUNCTUAL_LIGHT_DIRECTIONAL,
+  type PunctualLight,
+  type PunctualLightType,
+  type PunctualIncident,
+} from './punctual-lights.ts';
+export {
+  validateAreaLight,
+  packAreaLights,
+  areaLightLayout,
+  AREA_LIGHT_RECTANGLE,
+  AREA_LIGHT_DISK,
+  AREA_LIGHT_SPHERE,
+  AREA_LIGHT_FLAG_TWO_SIDED,
+  RECTANGLE_ORTHOGONALITY_TOLERANCE,
+  type AreaLight,
+  type AreaLightType,
+} from './area-lights.ts';
+export { sampleAreaLight, areaLightPdf, intersectAreaLight, type AreaLightSample, type AreaLightHit } from './area-light-sampling.ts';
+export {
+  initSphericalRectangle,
+  sampleSphericalRectangle,
+  MIN_SPHERICAL_RECTANGLE_SOLID_ANGLE,
+  MAX_SPHERICAL_RECTANGLE_SOLID_ANGLE,
+  type SphericalRectangle,
+} from './spherical-rectangle.ts';
