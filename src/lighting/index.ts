@@ -48,3 +48,31 @@ export {
   MAX_SPHERICAL_RECTANGLE_SOLID_ANGLE,
   type SphericalRectangle,
 } from './spherical-rectangle.ts';
+export { lightBoundsImportance, unionBounds, unionCones, type LightBounds } from './light-bounds.ts';
+export {
+  buildLightTree,
+  sampleLightTree,
+  lightTreePmf,
+  packLightTree,
+  lightTreeNodeLayout,
+  LIGHT_TREE_NONE,
+  LIGHT_TREE_FLAG_LEAF,
+  LIGHT_TREE_FLAG_TWO_SIDED,
+  type LightTree,
+  type LightTreeNode,
+  type LightTreeItem,
+  type LightTreeSample,
+} from './light-tree.ts';
+export {
+  buildLightSampler,
+  sampleLight,
+  lightPmf,
+  triangleLightBounds,
+  areaLightBounds,
+  punctualLightBounds,
+  type LightSampler,
+  type LightSamplerInput,
+  type LightRef,
+  type LightKind,
+  type LightSelection,
+} from './light-sampler.ts';
