@@ -76,3 +76,15 @@ export {
   type LightKind,
   type LightSelection,
 } from './light-sampler.ts';
+export { createHosekWilkieSky, hosekWilkieRadiance, type HosekWilkieSky } from './hosek-wilkie.ts';
+export { solarDiscRadiance, relativeAirMass, cieXyzMatching, planckRadiance, xyzToLinearSrgb, LUMENS_PER_WATT, SOLAR_BLACKBODY_KELVIN } from './solar-radiance.ts';
+export { sampleSun, sunPdf, sunRadiance, sunSolidAngle, sunLightLayout, oneMinusCos, type SunLight, type SunSample } from './sun-light.ts';
+export { cieOvercastRadiance, studioRadiance, STUDIO_SOFTBOXES, CIE_OVERCAST_ILLUMINANCE_FACTOR, type StudioSoftbox } from './procedural-skies.ts';
+export {
+  createEnvironmentLighting,
+  validateEnvironmentLighting,
+  clearSkyRadiance,
+  type EnvironmentLighting,
+  type EnvironmentLightingInput,
+  type EnvironmentLightingPreset,
+} from './environment-lighting.ts';
