@@ -112,3 +112,5 @@ export {
   type PortalEnvironmentSample,
   type WindowedDistribution,
 } from './portals.ts';
+export { validateLights, type ValidatedLights } from './lights.ts';
+export { packEnvironment, environmentMapUniformsLayout, type PackedEnvironment } from './environment-tables.ts';
