@@ -18,6 +18,8 @@ export const environmentMapUniformsLayout: StructLayout = defineStructLayout('En
   ['rotationTurns', 'f32', 'rotationRadians / (2 pi), added to u'],
   ['sampleable', 'u32', '0: black map, no environment light samples'],
   ['sunEnabled', 'u32', '1: the SunLight uniform holds a sun disc'],
+  ['reserved0', 'u32', 'pads the uniform block to 32 bytes'],
+  ['reserved1', 'u32'],
 ]);
 
 export interface PackedEnvironment {
