@@ -18,7 +18,11 @@ export type GpuRendererErrorCode =
   | 'SHADER_COMPILATION_FAILED'
   | 'GPU_VALIDATION_FAILED'
   | 'INVALID_CANVAS'
-  | 'INVALID_STATE';
+  | 'INVALID_STATE'
+  /** An environment map, environment file, sky description or portal that cannot be used. */
+  | 'INVALID_ENVIRONMENT'
+  /** A punctual or area light with missing, non-finite or out-of-range parameters. */
+  | 'INVALID_LIGHT';
 
 export class GpuRendererError extends Error {
   readonly code: GpuRendererErrorCode;

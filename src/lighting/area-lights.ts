@@ -1,0 +1,115 @@
+import { describe, fail, requireFiniteNumber, requireVec } from '../errors/validate.ts';
+import { allocateStructArray, defineStructLayout, writeStruct, type StructLayout } from '../gpu-layout/struct-layout.ts';
+import { cross, dot, length, normalize, scale, sub, type Vec3 } from './vec3.ts';
+
+/** Area lights (rectangle, disk, sphere): validation and the GPU record. Inputs: light-types.ts. */
+
+export type AreaLightType = 'rectangle' | 'disk' | 'sphere';
+
+/** A validated area light. */
+export interface AreaLight {
+  type: AreaLightType;
+  center: Vec3;
+  /** Rectangle: full edges (orthogonal). Disk and sphere: an orthonormal tangent frame of `normal`. */
+  edgeU: Vec3;
+  edgeV: Vec3;
+  /** Unit front-face normal (rectangle: normalize(cross(edgeU, edgeV))); sphere: +Z, unused. */
+  normal: Vec3;
+  /** Disk and sphere radius; rectangle 0. */
+  radius: number;
+  /** Surface area (one side). */
+  area: number;
+  /** emission x intensity. */
+  radiance: Vec3;
+  twoSided: boolean;
+}
+
+const CODE = 'INVALID_LIGHT';
+/** Largest |cos| between a rectangle's edges accepted as orthogonal. */
+export const RECTANGLE_ORTHOGONALITY_TOLERANCE = 1e-4;
+
+function positiveVecLength(value: unknown, field: string): Vec3 {
+  const v = requireVec(value, 3, field, CODE) as Vec3;
+  if (!(length(v) > 0)) fail(CODE, field, 'must be a non-zero vector');
+  return v;
+}
+
+function tangentFrame(n: Vec3): { t: Vec3; b: Vec3 } {
+  const a: Vec3 = Math.abs(n[0]) > 0.9 ? [0, 1, 0] : [1, 0, 0];
+  const t = normalize(cross(a, n));
+  return { t, b: cross(n, t) };
+}
+
+/** Validates one area light; `INVALID_LIGHT` errors name the field (e.g. `lights[3].edgeV`). */
+export function validateAreaLight(input: unknown, field = 'light'): AreaLight {
+  if (typeof input !== 'object' || input === null) fail(CODE, field, `expected an object, got ${describe(input)}`);
+  const l = input as Record<string, unknown>;
+  const type = l.type;
+  if (type !== 'rectangle' && type !== 'disk' && type !== 'sphere') fail(CODE, `${field}.type`, `expected 'rectangle', 'disk' or 'sphere', got ${describe(type)}`);
+  const emission = l.emission === undefined ? [1, 1, 1] : requireVec(l.emission, 3, `${field}.emission`, CODE);
+  emission.forEach((x, i) => {
+    if (x < 0) fail(CODE, `${field}.emission[${i}]`, `must be >= 0, got ${x}`);
+  });
+  const intensity = l.intensity === undefined ? 1 : requireFiniteNumber(l.intensity, `${field}.intensity`, CODE);
+  if (intensity < 0) fail(CODE, `${field}.intensity`, `must be >= 0, got ${intensity}`);
+  if (l.twoSided !== undefined && typeof l.twoSided !== 'boolean') fail(CODE, `${field}.twoSided`, `expected a boolean, got ${describe(l.twoSided)}`);
+  const twoSided = l.twoSided === true;
+  const center = requireVec(l.center, 3, `${field}.center`, CODE) as Vec3;
+  const radiance = scale(emission, intensity);
+  if (type === 'rectangle') {
+    const edgeU = positiveVecLength(l.edgeU, `${field}.edgeU`);
+    const edgeV = positiveVecLength(l.edgeV, `${field}.edgeV`);
+    const lu = length(edgeU);
+    const lv = length(edgeV);
+    if (Math.abs(dot(edgeU, edgeV)) > RECTANGLE_ORTHOGONALITY_TOLERANCE * lu * lv) fail(CODE, `${field}.edgeV`, 'must be orthogonal to edgeU');
+    const area = lu * lv;
+    if (!Number.isFinite(area)) fail(CODE, `${field}.edgeU`, 'rectangle area overflows');
+    return { type, center, edgeU, edgeV, normal: normalize(cross(edgeU, edgeV)), radius: 0, area, radiance, twoSided };
+  }
+  const radius = requireFiniteNumber(l.radius, `${field}.radius`, CODE);
+  if (!(radius > 0)) fail(CODE, `${field}.radius`, `must be > 0, got ${radius}`);
+  if (type === 'disk') {
+    const normal = normalize(positiveVecLength(l.normal, `${field}.normal`));
+    const { t, b } = tangentFrame(normal);
+    return { type, center, edgeU: t, edgeV: b, normal, radius, area: Math.PI * radius * radius, radiance, twoSided };
+  }
+  return { type, center, edgeU: [1, 0, 0], edgeV: [0, 1, 0], normal: [0, 0, 1], radius, area: 4 * Math.PI * radius * radius, radiance, twoSided };
+}
+
+export const AREA_LIGHT_RECTANGLE = 0;
+export const AREA_LIGHT_DISK = 1;
+export const AREA_LIGHT_SPHERE = 2;
+export const AREA_LIGHT_FLAG_TWO_SIDED = 1;
+
+/** GPU record of an area light (80 bytes, `array<AreaLight>`). */
+export const areaLightLayout: StructLayout = defineStructLayout('AreaLight', 1, [
+  ['corner', 'vec3f', 'rectangle: center - edgeU/2 - edgeV/2; disk, sphere: the centre'],
+  ['kind', 'u32', '0 rectangle, 1 disk, 2 sphere'],
+  ['edgeU', 'vec3f', 'rectangle: full edge; disk: unit tangent'],
+  ['radius', 'f32', 'disk, sphere'],
+  ['edgeV', 'vec3f', 'rectangle: full edge; disk: unit bitangent'],
+  ['flags', 'u32', 'bit 0: two-sided'],
+  ['normal', 'vec3f', 'unit front-face normal (rectangle, disk)'],
+  ['area', 'f32', 'one side'],
+  ['radiance', 'vec3f', 'emission x intensity'],
+]);
+
+export function packAreaLights(lights: readonly AreaLight[]): ArrayBuffer {
+  const buffer = allocateStructArray(areaLightLayout, lights.length);
+  const view = new DataView(buffer);
+  lights.forEach((l, i) => {
+    const corner = l.type === 'rectangle' ? sub(sub(l.center, scale(l.edgeU, 0.5)), scale(l.edgeV, 0.5)) : l.center;
+    writeStruct(areaLightLayout, view, i, {
+      corner,
+      kind: l.type === 'rectangle' ? AREA_LIGHT_RECTANGLE : l.type === 'disk' ? AREA_LIGHT_DISK : AREA_LIGHT_SPHERE,
+      edgeU: l.edgeU,
+      radius: l.radius,
+      edgeV: l.edgeV,
+      flags: l.twoSided ? AREA_LIGHT_FLAG_TWO_SIDED : 0,
+      normal: l.normal,
+      area: l.area,
+      radiance: l.radiance,
+    });
+  });
+  return buffer;
+}
