@@ -15,14 +15,15 @@ export function assertNear(actual: number, expected: number, tolerance: number, 
 }
 
 /** Asserts that `fn` throws a GpuRendererError with this code and field. */
-export function expectRendererError(fn: () => unknown, code: string, field: string, message?: RegExp): void {
+export function expectRendererError(fn: () => unknown, code: string, field: string, message?: RegExp, label = ''): void {
+  const prefix = label === '' ? '' : `${label}: `;
   assert.throws(fn, (e: unknown) => {
-    assert.ok(e instanceof GpuRendererError, `expected a GpuRendererError, got ${String(e)}`);
-    assert.equal(e.code, code, `code of: ${e.message}`);
-    assert.equal(e.field, field, `field of: ${e.message}`);
+    assert.ok(e instanceof GpuRendererError, `${prefix}expected a GpuRendererError, got ${String(e)}`);
+    assert.equal(e.code, code, `${prefix}code of: ${e.message}`);
+    assert.equal(e.field, field, `${prefix}field of: ${e.message}`);
     if (message) assert.match(e.message, message);
     return true;
-  });
+  }, `${prefix}expected an error`);
 }
 
 /** Quaternions q and -q are the same rotation: compare up to sign. */

@@ -84,6 +84,7 @@ export function createCameraController(options: unknown, context: CameraControll
   const setViewMode = (mode: unknown): void => {
     const next = validateViewMode(mode, `${field}.viewMode`);
     if (next === 'first-person' && !context.hasHeadAnchor) fail('INVALID_MODEL', `${field}.headJoint`, 'first-person needs a head anchor joint; the model has none (name one with camera.headJoint)');
+    settings = { ...settings, viewMode: next };
     if (next === viewMode) return;
     if (next === 'editor' || next === 'spectator') ensureFreeRigs();
     transition = last !== null && settings.transitionMs > 0 ? { from: last.transform, startMs: last.tMs } : null;
@@ -110,7 +111,7 @@ export function createCameraController(options: unknown, context: CameraControll
         editor = orbitFromPose(pose.position, pose.target);
         spectator = flyFromPose(pose.position, pose.target);
       }
-      if (settings.viewMode !== previous.viewMode) setViewMode(settings.viewMode);
+      if (settings.viewMode !== viewMode) setViewMode(settings.viewMode);
     },
     applyControl(input) {
       const control = validateControl(input);

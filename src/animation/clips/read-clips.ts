@@ -13,7 +13,8 @@ const INTERPOLATIONS: readonly string[] = ['STEP', 'LINEAR', 'CUBICSPLINE'];
  * equal to the key count (three times for CUBICSPLINE, which needs at least two keys).
  */
 function readSampler(sampler: AnimationSampler, path: AnimationChannelPath, field: string): AnimationSamplerData {
-  const interpolation = sampler.getInterpolation();
+  // An absent interpolation means LINEAR (animation.sampler schema default).
+  const interpolation = sampler.getInterpolation() ?? 'LINEAR';
   if (!INTERPOLATIONS.includes(interpolation)) fail('INVALID_ANIMATION', `${field}.interpolation`, `unknown interpolation ${JSON.stringify(interpolation)}`);
   const inputAccessor = sampler.getInput();
   if (inputAccessor === null) fail('INVALID_ANIMATION', `${field}.input`, 'sampler has no input (keyframe times)');
