@@ -109,6 +109,7 @@ test('without movement requirements the route arrival times drive the character 
   assertNear(timeline.characterAt(2000).yaw, -Math.PI / 2, 1e-12, 'facing -X');
   assertClose(timeline.characterAt(2000).velocity, [-1, 0, 0], 1e-12, '2 m in 2 s');
   assert.equal(timeline.movement.beats[0].rootMotion, 'in-place', 'authored root motion is removed when the route moves the character');
+  assert.equal(timeline.movement.beats[0].kind, 'travel');
 });
 
 test('the character and props stand on the terrain; route points off the ground are diagnosed', () => {

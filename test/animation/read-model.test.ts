@@ -105,3 +105,12 @@ test('a GLB round trip through gltf-transform IO reads the same model', async ()
   assertClose(reread.skins[0].inverseBindMatrices, original.skins[0].inverseBindMatrices, 0, 'inverse bind');
   assertClose(reread.clips[0].channels[3].sampler.output, original.clips[0].channels[3].sampler.output, 0, 'cubic output');
 });
+
+test('only mesh nodes of the default scene are drawn', () => {
+  const { document } = createRiggedFigure();
+  const ghostMesh = document.getRoot().listMeshes().find((m) => m.getName() === 'Badge')!;
+  document.createNode('Ghost').setMesh(ghostMesh); // in the document, in no scene
+  const model = readAnimatedModel(document);
+  assert.ok(model.nodes.some((n) => n.name === 'Ghost'));
+  assert.deepEqual(model.drawables.map((d) => model.nodes[d.node].name).sort(), ['Badge', 'Body']);
+});

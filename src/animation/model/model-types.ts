@@ -85,7 +85,7 @@ export interface ModelMaterialSummary {
   readonly hasNormalTexture: boolean;
 }
 
-/** A node that draws a mesh. Skinned when `skin >= 0`. */
+/** A node of the rendered scene that draws a mesh. Skinned when `skin >= 0`. */
 export interface ModelDrawable {
   readonly node: number;
   readonly mesh: number;

@@ -1,4 +1,4 @@
-import type { Document, Material } from '@gltf-transform/core';
+import type { Document, Material, Node } from '@gltf-transform/core';
 import { fail } from '../../errors/validate.ts';
 import { readAnimationClips } from '../clips/read-clips.ts';
 import { checkClipTargets } from '../clips/bind-clips.ts';
@@ -60,6 +60,7 @@ export function readAnimatedModel(document: Document, options: ReadAnimatedModel
   const skinIndexOf = new Map(document.getRoot().listSkins().map((skin, i) => [skin, i]));
   const meshIndexOf = new Map(document.getRoot().listMeshes().map((mesh, i) => [mesh, i]));
   const drawables: ModelDrawable[] = [];
+  const inScene = sceneNodes(document);
   const nodes: ModelNode[] = hierarchy.nodes.map((node, i) => {
     const nodeField = `${prefix}nodes[${i}]`;
     const rest = readNodeRest(node, nodeField);
@@ -76,7 +77,7 @@ export function readAnimatedModel(document: Document, options: ReadAnimatedModel
       }
       weights = nodeWeights.length === 0 ? [...meshes[mesh].weights] : [...nodeWeights];
       if (skin >= 0) checkSkinnedMesh(meshes[mesh], mesh, skins[skin].joints.length, prefix);
-      drawables.push({ node: i, mesh, skin });
+      if (inScene === null || inScene.has(node)) drawables.push({ node: i, mesh, skin });
     }
     return { name: node.getName(), parent: hierarchy.parents[i], children: hierarchy.children[i], ...rest, mesh, skin, weights };
   });
@@ -84,6 +85,25 @@ export function readAnimatedModel(document: Document, options: ReadAnimatedModel
   const clips = readAnimationClips(document, hierarchy.indexOf, prefix);
   for (const clip of clips) checkClipTargets(partial, clip);
   return { ...partial, clips };
+}
+
+/**
+ * Nodes of the default scene (or the first scene), which are the ones glTF renders (section
+ * 3.5.1); null when the document has no scene, in which case every mesh node is drawn.
+ */
+function sceneNodes(document: Document): Set<Node> | null {
+  const root = document.getRoot();
+  const scene = root.getDefaultScene() ?? root.listScenes()[0] ?? null;
+  if (scene === null) return null;
+  const nodes = new Set<Node>();
+  const stack = [...scene.listChildren()];
+  while (stack.length > 0) {
+    const node = stack.pop() as Node;
+    if (nodes.has(node)) continue;
+    nodes.add(node);
+    stack.push(...node.listChildren());
+  }
+  return nodes;
 }
 
 /** A skinned mesh's primitives must all carry joints, and every joint index must name a skin joint. */

@@ -108,11 +108,13 @@ export function resolveMovement(beats: readonly AnimationBeat[], route: Route, t
   if (!beats.some((beat) => beat.requirement !== null)) {
     return {
       mode: 'route-timed',
-      beats: beats.map((beat) => ({
-        beatId: beat.id, kind: 'travel', startMs: beat.startMs, endMs: beat.endMs,
-        startDistance: routeDistanceAtTime(route, beat.startMs), endDistance: routeDistanceAtTime(route, beat.endMs),
-        speed: 0, moveEndMs: beat.endMs, rootMotion: isAuthored(beat.clip) ? 'in-place' : 'authored',
-      })),
+      beats: beats.map((beat) => {
+        const startDistance = routeDistanceAtTime(route, beat.startMs);
+        const endDistance = routeDistanceAtTime(route, beat.endMs);
+        // Descriptive only: in this mode the route schedule, not the beat, moves the character (speed via movementSpeedAt).
+        const kind: MovementKind = endDistance > startDistance ? 'travel' : 'stationary';
+        return { beatId: beat.id, kind, startMs: beat.startMs, endMs: beat.endMs, startDistance, endDistance, speed: 0, moveEndMs: beat.endMs, rootMotion: isAuthored(beat.clip) ? 'in-place' : 'authored' };
+      }),
       anchorArrivalsMs: route.points.map((p) => p.arriveMs),
       diagnostics,
     };
