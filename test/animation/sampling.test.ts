@@ -47,6 +47,9 @@ test('LINEAR rotations slerp at constant angular speed (axis-angle reference), a
   // The same keys with the second quaternion negated (same rotation): the shorter arc is unchanged.
   const flipped = sampler('LINEAR', [0, 2], [...axisAngleQuaternion(axis, -40), ...axisAngleQuaternion(axis, 120).map((v) => -v)], 4);
   for (const u of [0.3, 0.7]) assertSameRotation(sample(flipped, 2 * u, true), axisAngleQuaternion(axis, -40 + 160 * u), 1e-12, `flipped u = ${u}`);
+  // Equal keys: the nearly-parallel fallback returns the key itself.
+  const still = sampler('LINEAR', [0, 1], [...axisAngleQuaternion(axis, 33), ...axisAngleQuaternion(axis, 33)], 4);
+  assertSameRotation(sample(still, 0.4, true), axisAngleQuaternion(axis, 33), 1e-15, 'equal keys');
   // 300 degrees about the axis is -60 degrees the short way round.
   const long = sampler('LINEAR', [0, 1], [...axisAngleQuaternion(axis, 0), ...axisAngleQuaternion(axis, 300)], 4);
   assertSameRotation(sample(long, 0.5, true), axisAngleQuaternion(axis, -30), 1e-12, 'shorter arc');

@@ -119,3 +119,19 @@ test('morph targets are applied before skinning: rest pose shows base + weight x
     assertClose(walked.positions.subarray(3 * v, 3 * v + 3), referencePosition(primitive, walkJoints, morphed.positions, v), 1e-12, `walk vertex ${v}`);
   }
 });
+
+test('mirrored joints keep normals on the inverse transpose (sign of the determinant); collapsed joints stay finite', () => {
+  const model = readAnimatedModel(createRiggedFigure().document);
+  const primitive = bodyPrimitive(model);
+  const pose = evaluateClipPose(model, model.clips[0], 0.4);
+  const head = model.nodes.findIndex((n) => n.name === 'Head');
+  pose.scales.set([-1, 1.2, 0.8], 3 * head);
+  const joints = jointMatricesFor(model, pose);
+  const skinned = skinVertices(primitive, applyMorphTargets(primitive, [0]), joints);
+  for (let v = 0; v < primitive.vertexCount; v++) {
+    assertClose(skinned.normals!.subarray(3 * v, 3 * v + 3), referenceNormal(primitive, joints, primitive.normals!, v), 1e-9, `mirrored normal ${v}`);
+  }
+  pose.scales.set([0, 0, 0], 3 * head);
+  const collapsed = skinVertices(primitive, applyMorphTargets(primitive, [0]), jointMatricesFor(model, pose));
+  for (const value of [...collapsed.positions, ...collapsed.normals!, ...collapsed.tangents!]) assert.ok(Number.isFinite(value));
+});
