@@ -11,6 +11,10 @@ export type GpuRendererErrorCode =
   | 'INVALID_TEXTURE'
   | 'INVALID_INSTANCE'
   | 'INVALID_SCENE_FILE'
+  /** glTF animation data: channels, samplers, keyframes, clip bindings. */
+  | 'INVALID_ANIMATION'
+  /** A model that cannot be animated or drawn as asked: skins, joints, weights, required attributes or textures. */
+  | 'INVALID_MODEL'
   | 'SCENE_TOO_LARGE'
   | 'WEBGPU_UNAVAILABLE'
   | 'DEVICE_LOST'

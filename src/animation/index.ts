@@ -1,0 +1,30 @@
+// Renderer-independent glTF animation core: model and clip data, keyframe sampling, poses,
+// CPU reference skinning, beats/route/movement, camera rigs and snapshot fields.
+export type { AnimatedModel, ModelNode, ModelSkin, ModelMesh, ModelPrimitive, ModelMorphTarget, ModelDrawable, ModelMaterialSummary } from './model/model-types.ts';
+export { readAnimatedModel, type ReadAnimatedModelOptions } from './model/read-model.ts';
+export type { AnimationClip, AnimationChannelData, AnimationSamplerData, AnimationInterpolation, AnimationChannelPath } from './clips/clip-types.ts';
+export { createClipLibrary, type ClipAssetInput, type ClipLibrary, type LibraryClip } from './clips/clip-library.ts';
+export type { ClipMovementProfileInput, ClipMovementProfile } from './clips/movement-profile.ts';
+export { sampleAnimationSampler } from './sampling/sample-sampler.ts';
+export { createRestPose, type Pose } from './pose/pose.ts';
+export { evaluateClipPose, loopClipTimeMs } from './pose/evaluate-clip.ts';
+export { evaluateLayeredPose, type ClipLayer } from './pose/evaluate-layers.ts';
+export { blendPoses, type PoseLayer } from './pose/blend-poses.ts';
+export { computeWorldMatrices, computeJointMatrices } from './pose/world-matrices.ts';
+export type { RootMotionNode } from './pose/root-motion.ts';
+export { applyMorphTargets, type MorphedStreams } from './skinning/morph-targets.ts';
+export { skinVertices, type SkinnedStreams } from './skinning/skin-vertices.ts';
+export { bakePose, type BakedPose, type BakePoseOptions, type ClipState, type ClipPlayback, type PoseSource } from './skinning/bake-pose.ts';
+export type { AnimationBeatInput, AnimationBeat, MovementRequirementInput, MovementKind } from './timeline/beats.ts';
+export type { RoutePointInput, Route } from './timeline/route.ts';
+export { flatTerrain, type TerrainHeight, type PropInput, type PropGroundAnchor } from './timeline/terrain.ts';
+export type { MovementPlan, BeatMovement, MovementDiagnostic, MovementDiagnosticCode, MovementTolerances } from './timeline/movement.ts';
+export { createSceneTimeline, type SceneTimeline, type SceneTimelineOptions, type TimelineSample, type CharacterPlacement } from './timeline/scene-timeline.ts';
+export type { CameraViewMode, CameraTransform, CameraControlInput, CameraRigOutput, CameraSubject, HeadLookIntent } from './camera/camera-types.ts';
+export type { AnimatedCameraOptionsInput, CameraConstraintsInput } from './camera/camera-options.ts';
+export { createCameraController, type CameraController } from './camera/camera-controller.ts';
+export { createCharacterCameraSubject, type CharacterCameraSubject } from './camera/camera-subject.ts';
+export { cubicBezierEasing, type CubicBezier } from './camera/cubic-bezier.ts';
+export { assembleAnimationSnapshot, countSkinnedVertices, countSkinnedJoints, type AnimationSnapshotCore, type MovementValidation } from './snapshot/animation-snapshot.ts';
+export { requireSkinnedCharacter, requireProfessionalCharacter } from './character-requirements.ts';
+export { createAnimatedSceneCore, type AnimatedSceneCore, type AnimatedSceneCoreOptions, type AnimatedSceneFrame } from './animated-scene-core.ts';
