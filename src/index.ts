@@ -11,3 +11,4 @@ export * from './runtime/index.ts';
 export * from './planning/index.ts';
 export * from './transport/index.ts';
 export * from './xr/index.ts';
+export * from './io/index.ts';

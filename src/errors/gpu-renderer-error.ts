@@ -8,6 +8,8 @@ export type GpuRendererErrorCode =
   | 'INVALID_MESH'
   | 'INVALID_SCENE_OBJECT'
   | 'INVALID_SCENE_FILE'
+  /** A glTF 2.0 asset the loader rejects; `field` is a JSON pointer into the asset (`/accessors/7`). */
+  | 'INVALID_GLTF'
   | 'SCENE_TOO_LARGE'
   | 'WEBGPU_UNAVAILABLE'
   | 'DEVICE_LOST'

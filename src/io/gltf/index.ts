@@ -1,0 +1,1 @@
+export { loadGltfScene, type GltfScene, type GltfLoadOptions, type GltfSource, type GltfDecoderModules, type GltfBounds, type GltfCameraInfo } from './load-gltf-scene.ts';
