@@ -157,6 +157,13 @@ export async function readGltfDocument(
       failGltf('glb:/chunks/0', `the JSON chunk does not parse: ${(error as Error).message}`, error);
     }
   } else {
+    // glTF JSON starts with '{' (after optional whitespace and a UTF-8 BOM); anything else is taken
+    // for a GLB whose magic is wrong.
+    const first = bytes.findIndex((b, i) => !(b === 0x20 || b === 0x09 || b === 0x0a || b === 0x0d || (i < 3 && (b === 0xef || b === 0xbb || b === 0xbf))));
+    if (first < 0 || bytes[first] !== 0x7b) {
+      const magic = bytes.byteLength >= 4 ? new DataView(bytes.buffer, bytes.byteOffset, 4).getUint32(0, true) : 0;
+      failGltf('glb:/header/magic', `neither glTF JSON nor a GLB: expected magic 0x46546c67 ("glTF"), got 0x${magic.toString(16).padStart(8, '0')}`);
+    }
     rawJson = parseJsonText(bytes, '');
   }
   const { json, bufferByteLengths } = validateGltfJson(rawJson);

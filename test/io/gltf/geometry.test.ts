@@ -2,7 +2,6 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { Document, Primitive } from '@gltf-transform/core';
 import { EXTMeshoptCompression, KHRDracoMeshCompression, KHRMeshQuantization } from '@gltf-transform/extensions';
-import draco3d from 'draco3dgltf';
 import { MeshoptEncoder } from 'meshoptimizer';
 import { loadGltfScene } from '../../../src/io/index.ts';
 import { toTriangleList } from '../../../src/io/gltf/topology.ts';
@@ -55,7 +54,7 @@ test('strip, fan, non-indexed and point primitives in a file', async () => {
   assert.ok(triangleNormalZ(s.positions, s.indices!).every((z) => z > 0), 'strip winding');
   assert.equal(f.indices!.length, 18);
   assert.ok(triangleNormalZ(f.positions, f.indices!).every((z) => z > 0), 'fan winding');
-  assert.deepEqual([...l.indices!], [0, 1, 2], 'non-indexed list: sequential indices');
+  assert.deepEqual(Array.from(l.indices!), [0, 1, 2], 'non-indexed list: sequential indices');
   assert.equal(l.normals, undefined, 'no NORMAL: normals omitted (flat shading)');
   assert.ok(scene.warnings.some((w) => w.startsWith('/meshes/0/primitives/2: skipped') && /POINTS/.test(w)), scene.warnings.join('\n'));
   assert.ok(scene.warnings.some((w) => w.startsWith('/meshes/0/primitives/3: skipped') && /LINES/.test(w)));
@@ -144,6 +143,9 @@ test('KHR_draco_mesh_compression: a Draco-encoded mesh decodes to the same trian
   const { primitive, positions, indices } = gridPrimitive(doc);
   doc.createScene().addChild(doc.createNode('d').setMesh(doc.createMesh('draco').addPrimitive(primitive)));
   doc.createExtension(KHRDracoMeshCompression).setRequired(true).setEncoderOptions({ quantizationBits: { POSITION: 16, NORMAL: 10, TEX_COORD: 12 } });
+  // draco3dgltf ships no type declarations: import it through a variable specifier.
+  const specifier = 'draco3dgltf';
+  const draco3d = ((await import(specifier)) as { default: { createEncoderModule(): Promise<unknown> } }).default;
   const glb = await toGlb(doc, { 'draco3d.encoder': await draco3d.createEncoderModule() });
   assert.ok(new TextDecoder().decode(glb).includes('KHR_draco_mesh_compression'));
   const scene = await loadGltfScene(glb);
@@ -182,5 +184,5 @@ test('EXT_meshopt_compression: a meshopt-encoded mesh decodes to the same data',
   };
   assert.deepEqual(canonical(m.indices!), canonical(indices));
   // Normals go through an 8-bit octahedral filter.
-  for (let i = 0; i < m.normals!.length; i += 3) assertClose(m.normals!.slice(i, i + 3), [0, 0, 1], 0.02, `normal ${i / 3}`);
+  for (let i = 0; i < m.normals!.length; i += 3) assertClose(Array.from(m.normals!).slice(i, i + 3), [0, 0, 1], 0.02, `normal ${i / 3}`);
 });

@@ -1,6 +1,6 @@
 // Builders for glTF test assets, made in memory with @gltf-transform (no binary fixtures).
 import assert from 'node:assert/strict';
-import { Document, NodeIO, type Accessor, type Buffer as GltfBuffer, type Material, type Mesh } from '@gltf-transform/core';
+import { NodeIO, type Accessor, type Buffer as GltfBuffer, type Document, type Material, type Mesh, type TypedArray } from '@gltf-transform/core';
 import { ALL_EXTENSIONS } from '@gltf-transform/extensions';
 import { GpuRendererError } from '../../../src/errors/gpu-renderer-error.ts';
 
@@ -25,7 +25,7 @@ export async function toGltfJsonBytes(document: Document): Promise<Uint8Array> {
 }
 
 export function accessor(document: Document, buffer: GltfBuffer, type: 'SCALAR' | 'VEC2' | 'VEC3' | 'VEC4', array: Float32Array | Uint16Array | Uint32Array | Int16Array | Int8Array | Uint8Array, normalized = false): Accessor {
-  return document.createAccessor().setType(type).setArray(array).setBuffer(buffer).setNormalized(normalized);
+  return document.createAccessor().setType(type).setArray(array as TypedArray).setBuffer(buffer).setNormalized(normalized);
 }
 
 /** A unit quad in the xy plane (z = 0), facing +z, with uvs (v down), normals and indices. */
