@@ -279,7 +279,7 @@ function validateMesh(entry: unknown, m: number, json: Json, counts: Record<stri
 /** Every `{ index }` object under a key ending in "Texture" (core slots and KHR_materials_* slots). */
 function validateTextureReferences(value: Json, at: string, textureCount: number): void {
   for (const [key, child] of Object.entries(value)) {
-    if (!isObject(child)) continue;
+    if (!isObject(child) || key === 'extras') continue;
     if (key.endsWith('Texture')) reference(child.index, `${at}/${key}/index`, textureCount, 'textures');
     else validateTextureReferences(child, `${at}/${key}`, textureCount);
   }
