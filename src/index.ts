@@ -12,3 +12,4 @@ export * from './planning/index.ts';
 export * from './transport/index.ts';
 export * from './xr/index.ts';
 export * from './animation/index.ts';
+export * from './io/index.ts';

@@ -4,8 +4,12 @@ import type { WavefrontToneMapping } from '../scene/types.ts';
 
 export interface RenderCommand {
   kind: 'render';
-  /** Scene JSON file; undefined renders the built-in Cornell box. */
+  /** Scene file: JSON, or glTF 2.0 (.glb / .gltf); undefined renders the built-in Cornell box. */
   scenePath: string | undefined;
+  /** glTF scenes: the camera to render from, by name (default the scene's first camera). */
+  camera?: string;
+  /** glTF scenes: the KHR_materials_variants variant to render. */
+  variant?: string;
   width: number;
   height: number;
   /** Target samples per pixel. */
@@ -38,9 +42,10 @@ export const renderDefaults = {
   out: 'render.png',
 } as const satisfies Omit<RenderCommand, 'kind' | 'scenePath'>;
 
-export const usage = `Usage: gpu-renderer render [scene.json] [options]
+export const usage = `Usage: gpu-renderer render [scene.json | model.glb | model.gltf] [options]
 
 Renders a scene with the WebGPU wavefront path tracer and writes a PNG.
+The scene is a scene JSON file or a glTF 2.0 asset (.glb or .gltf, chosen by extension).
 Without a scene file it renders the built-in Cornell box.
 
 Options:
@@ -53,6 +58,9 @@ Options:
   --tone-mapping <mode>    neutral | aces | linear (default ${renderDefaults.toneMapping})
   --exposure <x>           radiance multiplier before tone mapping (default ${renderDefaults.exposure})
   --out <file.png>         output image (default ${renderDefaults.out})
+  --camera <name>          glTF: render from the camera (node or camera) of that name
+                           (default the scene's first camera, else one framing the scene)
+  --variant <name>         glTF: KHR_materials_variants variant to render
   -h, --help               show this help
 `;
 
@@ -71,6 +79,11 @@ function positiveNumber(flag: string, text: string): number {
   const n = text.trim() === '' ? Number.NaN : Number(text);
   if (!Number.isFinite(n) || n <= 0) invalid(flag, `expected a finite number > 0, got ${JSON.stringify(text)}`);
   return n;
+}
+
+/** True for paths the CLI loads as glTF 2.0 (.glb, .gltf; case-insensitive). */
+export function isGltfPath(path: string): boolean {
+  return /\.(glb|gltf)$/i.test(path);
 }
 
 /** Parses the arguments after `render` (e.g. `['scene.json', '--spp', '16']`). */
@@ -134,6 +147,13 @@ export function parseRenderArgs(argv: readonly string[]): RenderCommand | HelpCo
       case '--exposure':
         command.exposure = positiveNumber(flag, take());
         break;
+      case '--camera':
+      case '--variant': {
+        const name = take();
+        if (name === '') invalid(flag, 'expects a name');
+        command[flag === '--camera' ? 'camera' : 'variant'] = name;
+        break;
+      }
       case '--out': {
         const out = take();
         if (out === '') invalid(flag, 'expects a file name');
@@ -145,6 +165,9 @@ export function parseRenderArgs(argv: readonly string[]): RenderCommand | HelpCo
     }
   }
   if (!sppPerFrameGiven) command.sppPerFrame = Math.min(command.sppPerFrame, command.spp);
+  for (const [flag, value] of [['--camera', command.camera], ['--variant', command.variant]] as const) {
+    if (value !== undefined && (command.scenePath === undefined || !isGltfPath(command.scenePath))) invalid(flag, 'applies to glTF scenes (.glb or .gltf) only');
+  }
   return command;
 }
 

@@ -9,12 +9,27 @@ import type { WavefrontSceneDescription } from '../scene/types.ts';
 import { writePng } from '../post/png-node.ts';
 import { createProgressBar, type ProgressStream } from './progress.ts';
 import type { RenderSummary } from './render-format.ts';
-import type { RenderCommand } from './args.ts';
+import { isGltfPath, type RenderCommand } from './args.ts';
 
 export type { RenderSummary } from './render-format.ts';
 
-export async function loadScene(scenePath: string | undefined): Promise<WavefrontSceneDescription> {
+/**
+ * The scene to render: the Cornell box, a glTF 2.0 asset (.glb / .gltf, by extension; its loader
+ * warnings go to `stderr`) or a scene JSON file.
+ */
+export async function loadScene(
+  scenePath: string | undefined,
+  options: { camera?: string; variant?: string; stderr?: ProgressStream } = {},
+): Promise<WavefrontSceneDescription> {
   if (scenePath === undefined) return createCornellBoxScene();
+  if (isGltfPath(scenePath)) {
+    // Loaded on demand so JSON scenes never pull in the glTF reader and its decoders.
+    const { loadGltfScene } = await import('../io/gltf/load-gltf-scene.ts');
+    const gltf = await loadGltfScene(scenePath, { camera: options.camera, variant: options.variant });
+    for (const warning of gltf.warnings) options.stderr?.write(`warning: ${warning}\n`);
+    // Spreading keeps the renderer's scene keys only; the loader's metadata is non-enumerable.
+    return { ...gltf };
+  }
   let text: string;
   try {
     text = await readFile(scenePath, 'utf8');
@@ -26,7 +41,7 @@ export async function loadScene(scenePath: string | undefined): Promise<Wavefron
 
 export async function runRenderCommand(command: RenderCommand, io: { stderr: ProgressStream } = { stderr: process.stderr }): Promise<RenderSummary> {
   const t0 = performance.now();
-  const scene = await loadScene(command.scenePath);
+  const scene = await loadScene(command.scenePath, { camera: command.camera, variant: command.variant, stderr: io.stderr });
   const renderer: WavefrontPathTracingRenderer = await createWavefrontPathTracingComputeRenderer({
     width: command.width,
     height: command.height,

@@ -15,6 +15,8 @@ export type GpuRendererErrorCode =
   | 'INVALID_ANIMATION'
   /** A model that cannot be animated or drawn as asked: skins, joints, weights, required attributes or textures. */
   | 'INVALID_MODEL'
+  /** A glTF 2.0 asset the loader rejects; `field` is a JSON pointer into the asset (`/accessors/7`). */
+  | 'INVALID_GLTF'
   | 'SCENE_TOO_LARGE'
   | 'WEBGPU_UNAVAILABLE'
   | 'DEVICE_LOST'

@@ -38,6 +38,18 @@ test('every flag, in both --flag value and --flag=value forms', () => {
   assert.equal(render(['--', '-odd.json']).scenePath, '-odd.json');
 });
 
+test('glTF scenes: --camera and --variant', () => {
+  const command = render(['model.glb', '--camera', 'Camera.001', '--variant=Midnight']);
+  assert.deepEqual([command.scenePath, command.camera, command.variant], ['model.glb', 'Camera.001', 'Midnight']);
+  assert.equal(render(['Model.GLTF', '--camera', 'top']).camera, 'top');
+  // Without the flags the command has no camera/variant keys at all.
+  assert.deepEqual(Object.keys(render(['model.glb'])).filter((k) => k === 'camera' || k === 'variant'), []);
+  rejects(['render', 'scene.json', '--camera', 'top'], '--camera', /glTF scenes/);
+  rejects(['render', '--variant', 'x'], '--variant', /glTF scenes/);
+  rejects(['render', 'a.glb', '--camera='], '--camera', /expects a name/);
+  rejects(['render', 'a.glb', '--variant'], '--variant', /expects a value/);
+});
+
 test('samples per frame never exceeds the target unless given', () => {
   assert.equal(render(['--spp', '2']).sppPerFrame, 2);
   assert.equal(render(['--spp', '100']).sppPerFrame, renderDefaults.sppPerFrame);
@@ -49,7 +61,7 @@ test('help', () => {
     assert.equal(command.kind, 'help', argv.join(' '));
     assert.equal(command.kind === 'help' && command.text, usage);
   }
-  for (const flag of ['--width', '--height', '--spp', '--max-depth', '--seed', '--tone-mapping', '--exposure', '--out']) assert.ok(usage.includes(flag), flag);
+  for (const flag of ['--width', '--height', '--spp', '--max-depth', '--seed', '--tone-mapping', '--exposure', '--out', '--camera', '--variant', '.glb', '.gltf']) assert.ok(usage.includes(flag), flag);
 });
 
 test('bad commands and flags are typed errors naming the flag', () => {

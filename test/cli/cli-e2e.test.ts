@@ -26,7 +26,7 @@ function run(args: string[], cwd = root): Promise<{ code: number | null; stdout:
 test('--help prints usage and exits 0', async () => {
   const r = await run(['--help']);
   assert.equal(r.code, 0, r.stderr);
-  assert.match(r.stdout, /Usage: gpu-renderer render \[scene\.json\]/);
+  assert.match(r.stdout, /Usage: gpu-renderer render \[scene\.json \| model\.glb \| model\.gltf\]/);
 });
 
 test('a bad flag exits 1 with "error [CODE] field: message"', async () => {

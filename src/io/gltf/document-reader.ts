@@ -1,0 +1,201 @@
+/**
+ * Source -> @gltf-transform `Document`: reads the bytes (file, URL, memory), validates the GLB
+ * container and the JSON with exact pointers, fetches every external resource, then lets
+ * @gltf-transform build the document with all Khronos extensions registered, plus the Draco and
+ * meshopt decoders they need.
+ */
+import { Document, GLB_BUFFER, WebIO, type ILogger, type JSONDocument } from '@gltf-transform/core';
+import { ALL_EXTENSIONS } from '@gltf-transform/extensions';
+import { GpuRendererError } from '../../errors/gpu-renderer-error.ts';
+import { failGltf, gltfError, pointer } from './errors.ts';
+import { IGNORED_OPTIONAL_EXTENSIONS, UNSUPPORTED_TEXTURE_EXTENSIONS } from './extensions.ts';
+import { isGlb, parseGlb } from './glb-container.ts';
+import { isObject, validateGltfJson } from './json-validation.ts';
+import { readResource, readUrl, sourceStringToUrl } from './resources.ts';
+
+/** What `loadGltfScene` accepts. */
+export type GltfSource = string | URL | ArrayBuffer | Uint8Array | Document;
+
+/**
+ * Decoder modules for compressed geometry; loaded on demand in Node (`draco3dgltf`, `meshoptimizer`).
+ * Browser applications whose bundler does not include those packages pass their own here.
+ */
+export interface GltfDecoderModules {
+  /** An initialised Draco decoder module (`await draco3d.createDecoderModule()`). */
+  'draco3d.decoder'?: unknown;
+  /** meshoptimizer's `MeshoptDecoder` (after `await MeshoptDecoder.ready`). */
+  'meshopt.decoder'?: unknown;
+}
+
+export interface ReadDocumentResult {
+  document: Document;
+  /** The asset's JSON, or undefined when a Document was passed in. */
+  json: Record<string, unknown> | undefined;
+}
+
+let dracoDecoder: Promise<unknown> | undefined;
+let meshoptDecoder: Promise<unknown> | undefined;
+
+async function loadDraco(): Promise<unknown> {
+  // A variable specifier: the package is Node-oriented, browser builds pass their own decoder.
+  const specifier = 'draco3dgltf';
+  const draco3d = ((await import(specifier)) as { default: { createDecoderModule: () => Promise<unknown> } }).default;
+  return draco3d.createDecoderModule();
+}
+
+async function loadMeshopt(): Promise<unknown> {
+  const { MeshoptDecoder } = await import('meshoptimizer');
+  await MeshoptDecoder.ready;
+  return MeshoptDecoder;
+}
+
+function captureLogger(warnings: string[]): ILogger {
+  return {
+    debug: () => {},
+    info: () => {},
+    warn: (text: string) => warnings.push(`glTF reader: ${text}`),
+    error: (text: string) => warnings.push(`glTF reader: ${text}`),
+  };
+}
+
+async function sourceBytes(source: Exclude<GltfSource, Document>, signal: AbortSignal | undefined): Promise<{ bytes: Uint8Array; base: URL | undefined }> {
+  if (source instanceof Uint8Array) return { bytes: source, base: undefined };
+  if (source instanceof ArrayBuffer) return { bytes: new Uint8Array(source), base: undefined };
+  const url = source instanceof URL ? source : await sourceStringToUrl(source);
+  try {
+    return { bytes: await readUrl(url, signal), base: url };
+  } catch (error) {
+    signal?.throwIfAborted();
+    failGltf('', `cannot read ${url.href}: ${(error as Error).message}`, error);
+  }
+}
+
+function parseJsonText(bytes: Uint8Array, field: string): unknown {
+  let text: string;
+  try {
+    text = new TextDecoder('utf-8', { fatal: true, ignoreBOM: false }).decode(bytes);
+  } catch (error) {
+    failGltf(field, 'the glTF JSON is not valid UTF-8', error);
+  }
+  try {
+    return JSON.parse(text);
+  } catch (error) {
+    failGltf(field, `the glTF JSON does not parse: ${(error as Error).message}`, error);
+  }
+}
+
+/**
+ * KHR_texture_basisu / EXT_texture_avif are optional here (a required one was rejected during
+ * validation): where the texture also names a core `source` image, drop the extension so the
+ * reader keeps that fallback (the extension spec's intended behaviour for clients without the
+ * codec); without a fallback the image stays and is dropped with a warning when decoding.
+ */
+function preferFallbackSources(json: Record<string, unknown>, warnings: string[]): void {
+  const textures = Array.isArray(json.textures) ? json.textures : [];
+  textures.forEach((texture: unknown, i) => {
+    if (!isObject(texture) || !isObject(texture.extensions)) return;
+    for (const name of UNSUPPORTED_TEXTURE_EXTENSIONS) {
+      if (!(name in texture.extensions)) continue;
+      if (texture.source !== undefined) {
+        delete texture.extensions[name];
+        warnings.push(`${pointer('textures', i, 'extensions', name)}: ${name} images cannot be decoded; using the fallback image ${String(texture.source)}`);
+      }
+    }
+  });
+}
+
+async function loadResources(json: Record<string, unknown>, bufferByteLengths: number[], bin: Uint8Array | undefined, base: URL | undefined, signal: AbortSignal | undefined): Promise<JSONDocument['resources']> {
+  const resources: Record<string, Uint8Array> = {};
+  const buffers = (Array.isArray(json.buffers) ? json.buffers : []) as Array<Record<string, unknown>>;
+  await Promise.all(
+    buffers.map(async (buffer, i) => {
+      const at = pointer('buffers', i);
+      const meshoptFallback = isObject(buffer.extensions) && isObject(buffer.extensions.EXT_meshopt_compression) && buffer.extensions.EXT_meshopt_compression.fallback === true;
+      let data: Uint8Array;
+      if (typeof buffer.uri === 'string') {
+        if (meshoptFallback && !buffer.uri.startsWith('data:')) return; // never read: meshopt decodes instead
+        data = await readResource(buffer.uri, base, at, signal);
+        resources[buffer.uri] = data;
+      } else if (meshoptFallback) {
+        return;
+      } else if (i === 0 && bin !== undefined) {
+        data = bin;
+        resources[GLB_BUFFER] = bin;
+      } else {
+        failGltf(at, i === 0 ? 'the buffer has no uri and the file has no GLB BIN chunk' : 'only the first buffer may omit its uri (GLB BIN chunk)');
+      }
+      if (data.byteLength < bufferByteLengths[i]) failGltf(pointer('buffers', i, 'byteLength'), `declared ${bufferByteLengths[i]} bytes, the data has ${data.byteLength} (truncated)`);
+    }),
+  );
+  const images = (Array.isArray(json.images) ? json.images : []) as Array<Record<string, unknown>>;
+  await Promise.all(
+    images.map(async (image, i) => {
+      if (image.bufferView !== undefined || typeof image.uri !== 'string') return;
+      resources[image.uri] = await readResource(image.uri, base, pointer('images', i), signal);
+    }),
+  );
+  return resources as JSONDocument['resources'];
+}
+
+export async function readGltfDocument(
+  source: GltfSource,
+  warnings: string[],
+  options: { signal?: AbortSignal; decoders?: GltfDecoderModules } = {},
+): Promise<ReadDocumentResult> {
+  const { signal } = options;
+  if (source instanceof Document) return { document: source, json: undefined };
+  const { bytes, base } = await sourceBytes(source, signal);
+  signal?.throwIfAborted();
+  let rawJson: unknown;
+  let bin: Uint8Array | undefined;
+  if (isGlb(bytes)) {
+    const glb = parseGlb(bytes);
+    bin = glb.bin;
+    try {
+      rawJson = JSON.parse(glb.jsonText);
+    } catch (error) {
+      failGltf('glb:/chunks/0', `the JSON chunk does not parse: ${(error as Error).message}`, error);
+    }
+  } else {
+    // glTF JSON starts with '{' (after optional whitespace and a UTF-8 BOM); anything else is taken
+    // for a GLB whose magic is wrong.
+    const first = bytes.findIndex((b, i) => !(b === 0x20 || b === 0x09 || b === 0x0a || b === 0x0d || (i < 3 && (b === 0xef || b === 0xbb || b === 0xbf))));
+    if (first < 0 || bytes[first] !== 0x7b) {
+      const magic = bytes.byteLength >= 4 ? new DataView(bytes.buffer, bytes.byteOffset, 4).getUint32(0, true) : 0;
+      failGltf('glb:/header/magic', `neither glTF JSON nor a GLB: expected magic 0x46546c67 ("glTF"), got 0x${magic.toString(16).padStart(8, '0')}`);
+    }
+    rawJson = parseJsonText(bytes, '');
+  }
+  const { json, bufferByteLengths } = validateGltfJson(rawJson);
+  const used = Array.isArray(json.extensionsUsed) ? (json.extensionsUsed as unknown[]).filter((e): e is string => typeof e === 'string') : [];
+  for (const name of used) {
+    const note = IGNORED_OPTIONAL_EXTENSIONS[name];
+    if (note !== undefined) warnings.push(`${name}: ${note}`);
+  }
+  preferFallbackSources(json, warnings);
+  const resources = await loadResources(json, bufferByteLengths, bin, base, signal);
+  signal?.throwIfAborted();
+
+  const dependencies: Record<string, unknown> = {};
+  if (used.includes('KHR_draco_mesh_compression')) {
+    dependencies['draco3d.decoder'] = options.decoders?.['draco3d.decoder'] ?? (await (dracoDecoder ??= loadDraco()));
+  }
+  if (used.includes('EXT_meshopt_compression')) {
+    dependencies['meshopt.decoder'] = options.decoders?.['meshopt.decoder'] ?? (await (meshoptDecoder ??= loadMeshopt()));
+  }
+  const io = new WebIO().registerExtensions(ALL_EXTENSIONS).registerDependencies(dependencies).setLogger(captureLogger(warnings));
+  try {
+    const document = await io.readJSON({ json: json as unknown as JSONDocument['json'], resources });
+    return { document, json };
+  } catch (error) {
+    if (error instanceof GpuRendererError) throw error;
+    throw gltfError(readerErrorPointer(error, used), `the glTF reader rejected the asset: ${(error as Error).message}`, error);
+  }
+}
+
+/** Best pointer for an error raised inside @gltf-transform: the extension it names, else the root. */
+function readerErrorPointer(error: unknown, used: readonly string[]): string {
+  const message = error instanceof Error ? error.message : String(error);
+  const index = used.findIndex((name) => message.includes(name));
+  return index >= 0 ? pointer('extensionsUsed', index) : '';
+}

@@ -1,0 +1,47 @@
+/**
+ * Which glTF extensions the loader honours. Every Khronos/EXT extension that @gltf-transform
+ * implements is registered for reading; this table says which of them the renderer's scene can
+ * express, so that a file *requiring* one it cannot is rejected instead of being drawn wrongly.
+ */
+
+/** Extensions whose content the loader maps (or that carry no rendering content at all). */
+export const SUPPORTED_EXTENSIONS: ReadonlySet<string> = new Set([
+  'KHR_draco_mesh_compression',
+  'EXT_meshopt_compression',
+  'KHR_mesh_quantization',
+  'EXT_mesh_gpu_instancing',
+  'KHR_mesh_primitive_restart',
+  'KHR_accessor_float16',
+  'KHR_accessor_float64',
+  'KHR_texture_transform',
+  'EXT_texture_webp',
+  'KHR_materials_emissive_strength',
+  'KHR_materials_ior',
+  'KHR_materials_specular',
+  'KHR_materials_transmission',
+  'KHR_materials_volume',
+  'KHR_materials_clearcoat',
+  'KHR_materials_sheen',
+  'KHR_materials_dispersion',
+  'KHR_materials_anisotropy',
+  'KHR_materials_iridescence',
+  'KHR_materials_diffuse_transmission',
+  'KHR_materials_variants',
+  'KHR_lights_punctual',
+  'KHR_node_visibility',
+  // Metadata only: nothing to render.
+  'KHR_xmp_json_ld',
+  'EXT_mesh_features',
+  'EXT_structural_metadata',
+]);
+
+/** Texture source extensions whose images cannot be decoded here (no KTX2/Basis or AVIF decoder). */
+export const UNSUPPORTED_TEXTURE_EXTENSIONS: ReadonlySet<string> = new Set(['KHR_texture_basisu', 'EXT_texture_avif']);
+
+/** Optional extensions that are read but not representable; their use is reported as a warning. */
+export const IGNORED_OPTIONAL_EXTENSIONS: Readonly<Record<string, string>> = {
+  KHR_materials_unlit: 'unlit materials are shaded as their metallic-roughness fallback',
+  KHR_materials_pbrSpecularGlossiness: 'specular-glossiness materials are shaded as their metallic-roughness fallback',
+  KHR_texture_basisu: 'KTX2/Basis textures cannot be decoded; their fallback images are used where present',
+  EXT_texture_avif: 'AVIF textures cannot be decoded; their fallback images are used where present',
+};

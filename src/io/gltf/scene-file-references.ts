@@ -1,0 +1,144 @@
+/**
+ * glTF assets referenced from a scene JSON file (proposal; src/scene/scene-file.ts would call these):
+ *
+ * ```json
+ * {
+ *   "gltf": [
+ *     { "src": "models/room.glb", "camera": "Camera", "variant": "Night" },
+ *     { "src": "models/chair.glb", "transform": [1,0,0,0, 0,1,0,0, 0,0,1,0, 2,0,-1,1] }
+ *   ],
+ *   "environment": { "color": [0.1, 0.1, 0.1] }
+ * }
+ * ```
+ *
+ * `gltf` is one reference or an array; a reference is a string (`"model.glb"`) or an object with
+ * `src` (resolved against the scene file's location), and optional `camera` (index or name),
+ * `variant`, `scene` (index or name) and `transform` (column-major 4x4 placing the whole asset).
+ * The assets are merged after the file's own content: their meshes, materials, textures and images
+ * are appended with indices offset, their instances and lights placed by `transform`. The file's
+ * `camera` wins; otherwise the first reference's camera is used (its chosen or default camera).
+ */
+import { GpuRendererError, isGpuRendererError } from '../../errors/gpu-renderer-error.ts';
+import { describe } from '../../errors/validate.ts';
+import type { WavefrontMaterialInput, WavefrontPunctualLightInput, WavefrontSceneDescription } from '../../scene/types.ts';
+import { loadGltfScene, type GltfLoadOptions, type GltfScene } from './load-gltf-scene.ts';
+import { determinant3, IDENTITY, multiply, normalize, transformDirection, transformPoint } from './matrix.ts';
+import { sourceStringToUrl } from './resources.ts';
+
+export interface GltfSceneReference {
+  src: string;
+  camera?: number | string;
+  variant?: string;
+  scene?: number | string;
+  /** Column-major 4x4 applied to the whole asset; default identity. */
+  transform?: number[];
+}
+
+function invalid(field: string, message: string): never {
+  throw new GpuRendererError('INVALID_SCENE_FILE', message, { field });
+}
+
+/** Checks the `gltf` value of a scene file; errors are INVALID_SCENE_FILE naming `gltf[i].key`. */
+export function parseGltfReferences(value: unknown, field = 'gltf'): GltfSceneReference[] {
+  const list = Array.isArray(value) ? value : [value];
+  return list.map((entry: unknown, i) => {
+    const at = Array.isArray(value) ? `${field}[${i}]` : field;
+    if (typeof entry === 'string') return { src: entry };
+    if (typeof entry !== 'object' || entry === null || Array.isArray(entry)) invalid(at, `expected a file name or { src, ... }, got ${describe(entry)}`);
+    const object = entry as Record<string, unknown>;
+    const allowed = ['src', 'camera', 'variant', 'scene', 'transform'];
+    for (const key of Object.keys(object)) if (!allowed.includes(key)) invalid(`${at}.${key}`, `unknown key ${JSON.stringify(key)} (expected one of ${allowed.join(', ')})`);
+    if (typeof object.src !== 'string' || object.src === '') invalid(`${at}.src`, `expected a file name, got ${describe(object.src)}`);
+    const ref: GltfSceneReference = { src: object.src };
+    for (const key of ['camera', 'scene'] as const) {
+      const v = object[key];
+      if (v === undefined) continue;
+      if (typeof v !== 'string' && !(typeof v === 'number' && Number.isInteger(v) && v >= 0)) invalid(`${at}.${key}`, `expected a name or an index, got ${describe(v)}`);
+      ref[key] = v;
+    }
+    if (object.variant !== undefined) {
+      if (typeof object.variant !== 'string') invalid(`${at}.variant`, `expected a variant name, got ${describe(object.variant)}`);
+      ref.variant = object.variant;
+    }
+    if (object.transform !== undefined) {
+      const t = object.transform;
+      if (!Array.isArray(t) || t.length !== 16) invalid(`${at}.transform`, `expected 16 numbers (column-major 4x4), got ${describe(t)}`);
+      t.forEach((x, k) => {
+        if (typeof x !== 'number' || !Number.isFinite(x)) invalid(`${at}.transform[${k}]`, `expected a finite number, got ${describe(x)}`);
+      });
+      if (t[3] !== 0 || t[7] !== 0 || t[11] !== 0 || t[15] !== 1 || determinant3(t) === 0) invalid(`${at}.transform`, 'expected an affine, invertible matrix (last row 0, 0, 0, 1)');
+      ref.transform = t as number[];
+    }
+    return ref;
+  });
+}
+
+function placeLight(light: WavefrontPunctualLightInput, m: readonly number[]): WavefrontPunctualLightInput {
+  const out = { ...light };
+  if (light.position !== undefined) out.position = transformPoint(m, light.position);
+  if (light.direction !== undefined) out.direction = normalize(transformDirection(m, light.direction));
+  return out;
+}
+
+/**
+ * Loads every reference (relative to `base`, the scene file's path or URL) and merges it into
+ * `scene`. Returns the merged scene and the loaders' warnings, each prefixed with its reference.
+ * Loader errors keep their code and JSON pointer; the message names the reference.
+ */
+export async function resolveGltfReferences(
+  scene: WavefrontSceneDescription,
+  references: readonly GltfSceneReference[],
+  options: { base?: string | URL; signal?: AbortSignal; load?: (source: URL, options: GltfLoadOptions) => Promise<GltfScene> } = {},
+): Promise<{ scene: WavefrontSceneDescription; warnings: string[] }> {
+  const load = options.load ?? loadGltfScene;
+  const baseUrl = options.base === undefined ? undefined : options.base instanceof URL ? options.base : await sourceStringToUrl(options.base);
+  const out: WavefrontSceneDescription = {
+    ...scene,
+    meshes: [...(scene.meshes ?? [])],
+    materials: [...(scene.materials ?? [])],
+    textures: [...(scene.textures ?? [])],
+    images: [...(scene.images ?? [])],
+    lights: [...(scene.lights ?? [])],
+  };
+  // With instances present only instances are drawn: the file's own meshes get identity placements.
+  out.instances = scene.instances !== undefined ? [...scene.instances] : out.meshes!.map((_, mesh) => ({ mesh }));
+  const warnings: string[] = [];
+  for (let i = 0; i < references.length; i++) {
+    const ref = references[i];
+    const label = `gltf[${i}] (${JSON.stringify(ref.src)})`;
+    const url = baseUrl === undefined ? await sourceStringToUrl(ref.src) : new URL(ref.src, baseUrl);
+    let gltf: GltfScene;
+    try {
+      gltf = await load(url, { camera: ref.camera, variant: ref.variant, scene: ref.scene, signal: options.signal });
+    } catch (error) {
+      if (!isGpuRendererError(error)) throw error;
+      const message = error.field ? error.message.slice(error.field.length + 2) : error.message;
+      throw new GpuRendererError(error.code, `in ${label}: ${message}`, error.field === undefined ? { cause: error } : { field: error.field, cause: error });
+    }
+    for (const w of gltf.warnings) warnings.push(`${label}: ${w}`);
+    const m = ref.transform ?? [...IDENTITY];
+    const meshOffset = out.meshes!.length;
+    const materialOffset = out.materials!.length;
+    const textureOffset = out.textures!.length;
+    const imageOffset = out.images!.length;
+    out.images!.push(...gltf.images);
+    out.textures!.push(...gltf.textures.map((t) => ({ ...t, image: typeof t.image === 'number' ? t.image + imageOffset : t.image })));
+    out.materials!.push(...gltf.materials.map((material) => offsetTextureRefs(material, textureOffset)));
+    out.meshes!.push(...gltf.meshes.map((mesh) => ({ ...mesh, material: typeof mesh.material === 'number' ? mesh.material + materialOffset : mesh.material })));
+    out.instances.push(...gltf.instances.map((inst) => ({ ...inst, mesh: inst.mesh + meshOffset, transform: multiply(m, inst.transform ?? IDENTITY), ...(inst.material === undefined ? {} : { material: inst.material + materialOffset }) })));
+    out.lights!.push(...gltf.lights.map((light) => placeLight(light, m)));
+    if (out.camera === undefined) {
+      const c = gltf.camera;
+      out.camera = { ...c, position: transformPoint(m, c.position), target: transformPoint(m, c.target), up: normalize(transformDirection(m, c.up ?? [0, 1, 0])) };
+    }
+  }
+  return { scene: out, warnings };
+}
+
+function offsetTextureRefs(material: WavefrontMaterialInput, offset: number): WavefrontMaterialInput {
+  const out = { ...material } as Record<string, unknown>;
+  for (const [key, value] of Object.entries(out)) {
+    if (key.endsWith('Texture') && typeof value === 'object' && value !== null && 'index' in value) out[key] = { ...value, index: (value as { index: number }).index + offset };
+  }
+  return out as WavefrontMaterialInput;
+}

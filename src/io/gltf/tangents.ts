@@ -1,0 +1,94 @@
+/**
+ * MikkTSpace tangents (Mikkelsen 2008, "Simulation of Wrinkled Surfaces Revisited"; the tangent
+ * space glTF 2.0 section 3.7.2.1 prescribes when TANGENT is absent), computed with the `mikktspace`
+ * WebAssembly port as @gltf-transform's `tangents()` does: the mesh is unwelded to one vertex per
+ * triangle corner, tangents are generated, and identical corners are welded back together.
+ */
+import type { VertexStreams } from './vertex-streams.ts';
+
+type GenerateTangents = (position: Float32Array, normal: Float32Array, texcoord: Float32Array) => Float32Array;
+let generator: Promise<GenerateTangents> | undefined;
+
+async function loadGenerator(): Promise<GenerateTangents> {
+  const module = await import('mikktspace');
+  return module.generateTangents;
+}
+
+function unweld(values: Float32Array, size: number, indices: Uint32Array): Float32Array {
+  const out = new Float32Array(indices.length * size);
+  for (let c = 0; c < indices.length; c++) {
+    for (let k = 0; k < size; k++) out[c * size + k] = values[indices[c] * size + k];
+  }
+  return out;
+}
+
+/** Per-corner face normals (counter-clockwise front faces), for meshes without NORMAL. */
+function flatNormals(cornerPositions: Float32Array): Float32Array {
+  const out = new Float32Array(cornerPositions.length);
+  for (let t = 0; t < cornerPositions.length; t += 9) {
+    const p = cornerPositions;
+    const e1 = [p[t + 3] - p[t], p[t + 4] - p[t + 1], p[t + 5] - p[t + 2]];
+    const e2 = [p[t + 6] - p[t], p[t + 7] - p[t + 1], p[t + 8] - p[t + 2]];
+    let n = [e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]];
+    const len = Math.hypot(n[0], n[1], n[2]);
+    n = len > 0 ? n.map((x) => x / len) : [0, 0, 1];
+    for (let c = 0; c < 3; c++) out.set(n, t + c * 3);
+  }
+  return out;
+}
+
+/** Welds corners whose every attribute is bitwise equal; returns the unique vertices and indices. */
+function weld(streams: Array<{ values: Float32Array; size: number }>, cornerCount: number): { remap: Uint32Array; unique: number[] } {
+  const remap = new Uint32Array(cornerCount);
+  const unique: number[] = [];
+  const seen = new Map<string, number>();
+  const key: number[] = [];
+  for (let c = 0; c < cornerCount; c++) {
+    key.length = 0;
+    for (const s of streams) for (let k = 0; k < s.size; k++) key.push(s.values[c * s.size + k]);
+    const text = key.join(',');
+    let index = seen.get(text);
+    if (index === undefined) {
+      index = unique.length;
+      seen.set(text, index);
+      unique.push(c);
+    }
+    remap[c] = index;
+  }
+  return { remap, unique };
+}
+
+/**
+ * Returns `streams` with MikkTSpace tangents for UV set `texCoord` (0 or 1), re-indexed; adds flat
+ * normals first when the mesh has none (a tangent frame needs a normal).
+ */
+export async function withMikkTSpaceTangents(streams: VertexStreams, texCoord: number): Promise<VertexStreams> {
+  const uvs = texCoord === 1 ? streams.uvs1 : streams.uvs;
+  if (uvs === undefined) throw new RangeError(`texCoord ${texCoord} has no uvs`);
+  const generate = await (generator ??= loadGenerator());
+  const corners = streams.indices;
+  const cornerPositions = unweld(streams.positions, 3, corners);
+  const cornerNormals = streams.normals === undefined ? flatNormals(cornerPositions) : unweld(streams.normals, 3, corners);
+  const cornerUvs = unweld(uvs, 2, corners);
+  const tangents = generate(cornerPositions, cornerNormals, cornerUvs);
+
+  const perCorner: Array<{ name: keyof VertexStreams; values: Float32Array; size: number }> = [
+    { name: 'positions', values: cornerPositions, size: 3 },
+    { name: 'normals', values: cornerNormals, size: 3 },
+    { name: 'tangents', values: tangents, size: 4 },
+  ];
+  if (streams.uvs !== undefined) perCorner.push({ name: 'uvs', values: texCoord === 0 ? cornerUvs : unweld(streams.uvs, 2, corners), size: 2 });
+  if (streams.uvs1 !== undefined) perCorner.push({ name: 'uvs1', values: texCoord === 1 ? cornerUvs : unweld(streams.uvs1, 2, corners), size: 2 });
+  if (streams.colors !== undefined) {
+    const size = streams.colors.length / (streams.positions.length / 3);
+    perCorner.push({ name: 'colors', values: unweld(streams.colors, size, corners), size });
+  }
+  const { remap, unique } = weld(perCorner, corners.length);
+  const out: VertexStreams = { ...streams, indices: remap };
+  for (const s of perCorner) {
+    const welded = new Float32Array(unique.length * s.size);
+    unique.forEach((corner, v) => welded.set(s.values.subarray(corner * s.size, (corner + 1) * s.size), v * s.size));
+    (out as unknown as Record<string, Float32Array>)[s.name] = welded;
+  }
+  return out;
+}
