@@ -117,6 +117,7 @@ export const SURFACE_FLAG_ANALYTIC = 4;
 export const TONE_MAPPING_NEUTRAL = 0;
 export const TONE_MAPPING_ACES = 1;
 export const TONE_MAPPING_LINEAR = 2;
+export const TONE_MAPPING_AGX = 3;
 
 /** Every constant the WGSL side sees, by its WGSL name (all u32). */
 export const gpuConstants: Readonly<Record<string, number>> = Object.freeze({
@@ -167,6 +168,7 @@ export const gpuConstants: Readonly<Record<string, number>> = Object.freeze({
   TONE_MAPPING_NEUTRAL,
   TONE_MAPPING_ACES,
   TONE_MAPPING_LINEAR,
+  TONE_MAPPING_AGX,
   ...Object.fromEntries(Object.entries(queueCounterSlots).map(([name, slot]) => [`COUNTER_${snakeUpper(name)}`, slot])),
   ...Object.fromEntries(Object.entries(dispatchArgSlots).map(([name, slot]) => [`DISPATCH_ARGS_${snakeUpper(name)}`, slot])),
 });

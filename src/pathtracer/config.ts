@@ -24,7 +24,7 @@ export interface WavefrontPathTracingComputeConfig {
   aovs: boolean;
 }
 
-const toneMappings: readonly WavefrontToneMapping[] = ['neutral', 'aces', 'linear'];
+const toneMappings: readonly WavefrontToneMapping[] = ['neutral', 'aces', 'linear', 'agx'];
 
 /** Every option name the renderer understands; any other key is a typed error, never ignored. */
 export const wavefrontOptionNames: ReadonlySet<string> = new Set<keyof WavefrontPathTracingOptions>([

@@ -1,11 +1,11 @@
-import { CAMERA_ORTHOGRAPHIC, CAMERA_PERSPECTIVE, dynamicUniformStride, queueCounterSlots, TONE_MAPPING_ACES, TONE_MAPPING_LINEAR, TONE_MAPPING_NEUTRAL } from '../gpu-layout/constants.ts';
+import { CAMERA_ORTHOGRAPHIC, CAMERA_PERSPECTIVE, dynamicUniformStride, queueCounterSlots, TONE_MAPPING_ACES, TONE_MAPPING_AGX, TONE_MAPPING_LINEAR, TONE_MAPPING_NEUTRAL } from '../gpu-layout/constants.ts';
 import { bounceUniformsLayout, frameUniformsLayout, resolveUniformsLayout, waveUniformsLayout } from '../gpu-layout/records.ts';
 import { writeStruct } from '../gpu-layout/struct-layout.ts';
 import type { WavefrontToneMapping } from '../scene/types.ts';
 import type { WavefrontPathTracingComputeConfig } from './config.ts';
 import type { Wave } from './tiling.ts';
 
-export const toneMappingIds: Record<WavefrontToneMapping, number> = { neutral: TONE_MAPPING_NEUTRAL, aces: TONE_MAPPING_ACES, linear: TONE_MAPPING_LINEAR };
+export const toneMappingIds: Record<WavefrontToneMapping, number> = { neutral: TONE_MAPPING_NEUTRAL, aces: TONE_MAPPING_ACES, linear: TONE_MAPPING_LINEAR, agx: TONE_MAPPING_AGX };
 
 export interface FrameSceneConstants {
   lightCount: number;

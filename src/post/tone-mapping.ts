@@ -1,8 +1,7 @@
 /**
- * CPU mirror of src/shaders/wgsl/tonemap.wgsl: the display transform from scene-referred linear
+ * CPU mirror of src/post/display/tonemap.wesl: the display transform from scene-referred linear
  * radiance to display-referred sRGB. Tests compare this file against the WGSL on the GPU, so the
- * two must stay formula-for-formula identical. AgX exists here first: tonemap.wgsl has yet to gain
- * it (the WGSL must then mirror toneMapAgx).
+ * two must stay formula-for-formula identical.
  */
 import { GpuRendererError } from '../errors/gpu-renderer-error.ts';
 import type { WavefrontToneMapping } from '../scene/types.ts';
@@ -10,16 +9,10 @@ import type { WavefrontToneMapping } from '../scene/types.ts';
 export type Rgb = [number, number, number];
 type RgbInput = readonly [number, number, number] | readonly number[];
 
-/**
- * Every display transform the CPU side implements: the scene types' modes plus `agx`. (`agx` is
- * not yet in `WavefrontToneMapping` of src/scene/types.ts nor in tonemap.wgsl; see the report.)
- */
-export type ToneMappingMode = WavefrontToneMapping | 'agx';
+/** Every display transform (the renderer's `toneMapping` values). */
+export type ToneMappingMode = WavefrontToneMapping;
 
-/**
- * The `mode` value the WGSL `apply_tone_mapping` takes for each tone mapping. `agx` (3) is the id
- * reserved for TONE_MAPPING_AGX, which tonemap.wgsl does not define yet.
- */
+/** The `mode` value the WGSL `apply_tone_mapping` takes for each tone mapping (TONE_MAPPING_* ids). */
 export const toneMappingModeIds: Readonly<Record<ToneMappingMode, number>> = { neutral: 0, aces: 1, linear: 2, agx: 3 };
 
 export const toneMappingNames: readonly ToneMappingMode[] = ['neutral', 'aces', 'linear', 'agx'];

@@ -247,7 +247,7 @@ export interface WavefrontPunctualLightInput {
 
 export type WavefrontLightInput = WavefrontPunctualLightInput;
 
-export type WavefrontToneMapping = 'neutral' | 'aces' | 'linear';
+export type WavefrontToneMapping = 'neutral' | 'aces' | 'linear' | 'agx';
 
 /** A whole scene: what a scene JSON file carries and what the glTF loader returns. */
 export interface WavefrontSceneDescription {

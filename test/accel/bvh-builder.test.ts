@@ -3,7 +3,7 @@ import assert from 'node:assert/strict';
 import { buildBvh, BVH_MAX_DEPTH, type BvhBuildResult } from '../../src/accel/bvh-builder.ts';
 import { computeSahCost } from '../../src/accel/bvh-sah.ts';
 import { packWavefrontBvhNodes, packWavefrontTriangles } from '../../src/accel/triangle-packing.ts';
-import { bvhNodeLayout, triangleLayout } from '../../src/gpu-layout/records.ts';
+import { bvhNodeLayout, primitiveLayout } from '../../src/gpu-layout/records.ts';
 import { readStruct } from '../../src/gpu-layout/struct-layout.ts';
 import {
   duplicatedSoup,
@@ -139,7 +139,7 @@ test('empty input gives one inverted root box', () => {
   const node = readStruct(bvhNodeLayout, new DataView(r.nodes), 0);
   assert.ok((node.boundsMin as number[])[0]! > (node.boundsMax as number[])[0]!);
   assert.equal(packWavefrontBvhNodes(r).byteLength, 32);
-  assert.equal(packWavefrontTriangles(new Float32Array(0), r.triangleOrder).byteLength, triangleLayout.size);
+  assert.equal(packWavefrontTriangles(new Float32Array(0), r.triangleOrder).byteLength, primitiveLayout.size);
 });
 
 test('options are validated', () => {
@@ -148,20 +148,20 @@ test('options are validated', () => {
   assert.throws(() => buildBvh(randomSoup(4, 1), { maxLeafSize: 1.5 }), RangeError);
 });
 
-test('packWavefrontTriangles writes triangleLayout records in BVH order', () => {
+test('packWavefrontTriangles writes triangle primitive records in BVH order', () => {
   const positions = randomSoup(50, 8);
   const r = buildBvh(positions);
-  const materialIds = Uint32Array.from({ length: 50 }, (_, i) => 1000 + i);
-  const meshIndices = Uint32Array.from({ length: 50 }, (_, i) => i % 3);
-  const packed = packWavefrontTriangles(positions, r.triangleOrder, { materialIds, meshIndices });
-  assert.equal(packed.byteLength, 50 * triangleLayout.size);
+  const primitives = Uint32Array.from({ length: 50 }, (_, i) => 1000 + i);
+  const instances = Uint32Array.from({ length: 50 }, (_, i) => i % 3);
+  const packed = packWavefrontTriangles(positions, r.triangleOrder, { primitives, instances });
+  assert.equal(packed.byteLength, 50 * primitiveLayout.size);
   const view = new DataView(packed);
   for (let s = 0; s < 50; s++) {
     const t = r.triangleOrder[s]!;
-    const rec = readStruct(triangleLayout, view, s);
-    assert.equal(rec.sourceIndex, t);
-    assert.equal(rec.materialId, 1000 + t);
-    assert.equal(rec.meshIndex, t % 3);
+    const rec = readStruct(primitiveLayout, view, s);
+    assert.equal(rec.primitive, 1000 + t);
+    assert.equal(rec.instance, t % 3);
+    assert.equal(rec.shape, 0, 'a triangle');
     for (let c = 0; c < 3; c++) {
       assert.equal((rec.v0 as number[])[c], positions[t * 9 + c]);
       assert.equal((rec.e1 as number[])[c], Math.fround(positions[t * 9 + 3 + c]! - positions[t * 9 + c]!));

@@ -2,8 +2,8 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { wavefrontRecordLayouts } from '../../src/gpu-layout/records.ts';
 import { writeStruct, readStruct, allocateStructArray, type StructLayout } from '../../src/gpu-layout/struct-layout.ts';
-import { createRecordsWgsl } from '../../src/shaders/records-module.ts';
-import { testDevice, uploadBuffer, readBuffer, runCompute } from '../helpers/gpu.ts';
+import { testDevice, uploadBuffer, readBuffer } from '../helpers/gpu.ts';
+import { runTestProgram } from '../helpers/wgsl.ts';
 import { BufferUsage } from '../../src/gpu/webgpu-constants.ts';
 
 // Distinct, exactly representable values per component so any offset mistake shows.
@@ -31,7 +31,7 @@ test('every record layout packed in TypeScript reads back field by field in WGSL
         }),
       )
       .join('\n');
-    const code = `${createRecordsWgsl()}
+    const code = `import package::layout::records::${layout.name};
 @group(0) @binding(0) var<storage, read> src: array<${layout.name}>;
 @group(0) @binding(1) var<storage, read_write> out: array<u32>;
 @compute @workgroup_size(1) fn main(@builtin(global_invocation_id) id: vec3u) {
@@ -41,7 +41,7 @@ ${body}
 }`;
     const srcBuffer = uploadBuffer(device, data);
     const outBuffer = device.createBuffer({ size: count * wordsPerRecord * 4, usage: BufferUsage.STORAGE | BufferUsage.COPY_SRC });
-    await runCompute(device, code, 'main', [srcBuffer, outBuffer], count);
+    await runTestProgram(device, { source: code, resources: { src: srcBuffer, out: outBuffer }, workgroups: count });
     const words = new DataView(await readBuffer(device, outBuffer));
     for (let r = 0; r < count; r++) {
       const expected = readStruct(layout, view, r);

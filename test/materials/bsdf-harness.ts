@@ -1,22 +1,51 @@
 export { rng } from '../helpers/random.ts';
-// Shared plumbing for the glTF BSDF tests: runs small WGSL kernels that call the bsdf-gltf API on
-// arrays of inputs (real WebGPU, no mocks), plus the statistics the tests need.
-import { composeShader } from '../../src/shaders/modules.ts';
-import { readBuffer, runCompute, testDevice, uploadBuffer } from '../helpers/gpu.ts';
+// The BSDF test harness: runs small WGSL kernels that call any lobe module's interface (the
+// `unpack_params` / `eval_pdf` / `sample` / `flags` contract of src/materials/bsdf.wesl) on arrays
+// of inputs (real WebGPU, no mocks), plus the statistics the tests need. A new lobe gets eval/pdf,
+// sampling, chi-square, furnace and reciprocity tests by describing itself as a LobeUnderTest.
+import { readBuffer, testDevice, uploadBuffer } from '../helpers/gpu.ts';
+import { runTestProgram } from '../helpers/wgsl.ts';
 import { BufferUsage } from '../../src/gpu/webgpu-constants.ts';
 import type { GltfBsdfMaterial, Vec3 } from '../../src/materials/index.ts';
 
 export const WORKGROUP = 64;
 
+/** A lobe (or composed BSDF) module and how its parameters pack into its 16-float PackedLobeParams. */
+export interface LobeUnderTest<P> {
+  name: string;
+  /** WESL module path, e.g. `package::materials::lobes::lambert`. */
+  module: string;
+  pack(params: P): readonly number[];
+}
+
+/** The glTF 2.0 metallic-roughness BSDF (gltf-bsdf.wesl), the composed material of the renderer. */
+export const gltfLobe: LobeUnderTest<GltfBsdfMaterial> = {
+  name: 'glTF metallic-roughness',
+  module: 'package::materials::gltf_bsdf',
+  pack: (m) => [m.baseColor[0], m.baseColor[1], m.baseColor[2], m.metallic, m.roughness, m.ior],
+};
+
 /**
- * WGSL preamble: the bsdf-gltf module, a packed test material (2 x vec4f: base.rgb + metallic,
- * roughness + ior) and a PCG hash RNG for in-kernel sampling.
+ * WESL preamble: the lobe module under the alias `lobe`, a packed test material (TestMaterial = the
+ * 16 floats of PackedLobeParams), adapters `bsdf_eval` / `bsdf_pdf` / `bsdf_sample` over the lobe
+ * interface (a sample carries its path weight f |cos| / pdf and validity), and a PCG hash RNG.
  */
-export function kernelPreamble(): string {
-  return `${composeShader(['bsdf-gltf'])}
-struct TestMaterial { a: vec4f, b: vec4f }
-fn t_material(t: TestMaterial) -> SurfaceMaterial {
-  return SurfaceMaterial(t.a.xyz, t.a.w, t.b.x, t.b.y, 0.0, 1.0, vec3f(1.0));
+export function kernelPreamble(module: string): string {
+  return `import ${module} as lobe;
+import package::materials::bsdf::{PackedLobeParams, BSDF_SPECULAR};
+import package::shaders::lib::math::{PI, TWO_PI, max_component};
+struct TestMaterial { a: vec4f, b: vec4f, c: vec4f, d: vec4f }
+fn t_material(t: TestMaterial) -> lobe::Params {
+  return lobe::unpack_params(PackedLobeParams(t.a, t.b, t.c, t.d));
+}
+fn bsdf_eval(m: lobe::Params, wo: vec3f, wi: vec3f) -> vec3f { return lobe::eval_pdf(m, wo, wi).f; }
+fn bsdf_pdf(m: lobe::Params, wo: vec3f, wi: vec3f) -> f32 { return lobe::eval_pdf(m, wo, wi).pdf; }
+struct TestSample { wi: vec3f, f: vec3f, pdf: f32, weight: vec3f, is_delta: bool, valid: bool }
+fn bsdf_sample(m: lobe::Params, wo: vec3f, u_lobe: f32, u: vec2f) -> TestSample {
+  let s = lobe::sample(m, wo, u_lobe, u);
+  let valid = s.flags != 0u && s.pdf > 0.0;
+  let weight = select(vec3f(0.0), s.f * (abs(s.wi.z) / s.pdf), valid);
+  return TestSample(s.wi, s.f, s.pdf, weight, (s.flags & BSDF_SPECULAR) != 0u, valid);
 }
 // PCG (O'Neill 2014) output permutation as a hash: decorrelated streams per invocation.
 fn t_pcg(v: u32) -> u32 {
@@ -28,13 +57,16 @@ fn t_unit(x: u32) -> f32 { return f32(x >> 8u) * (1.0 / 16777216.0); }
 `;
 }
 
-/** Packs materials as TestMaterial records (8 floats each). */
-export function packMaterials(materials: readonly GltfBsdfMaterial[]): Float32Array {
-  const out = new Float32Array(materials.length * 8);
-  materials.forEach((m, i) => {
-    out.set([m.baseColor[0], m.baseColor[1], m.baseColor[2], m.metallic, m.roughness, m.ior, 0, 0], i * 8);
-  });
+/** Packs parameters as TestMaterial records (16 floats each). */
+export function packParams<P>(lobe: LobeUnderTest<P>, params: readonly P[]): Float32Array {
+  const out = new Float32Array(params.length * 16);
+  params.forEach((p, i) => out.set(lobe.pack(p), i * 16));
   return out;
+}
+
+/** Packs glTF materials as TestMaterial records. */
+export function packMaterials(materials: readonly GltfBsdfMaterial[]): Float32Array {
+  return packParams(gltfLobe, materials);
 }
 
 /** Packs directions as vec4f (w = 0). */
@@ -53,17 +85,22 @@ export interface KernelSpec {
   count: number;
   /** WGSL statements run per invocation with `i: u32` in scope. */
   body: string;
+  /** Extra WESL imports (placed before any declaration). */
+  imports?: string;
   /** Extra WGSL declarations (helper functions). */
   extra?: string;
+  /** The lobe module the kernel exercises; the glTF BSDF by default. */
+  module?: string;
 }
 
 export async function runKernel(spec: KernelSpec): Promise<Float32Array> {
   const device = await testDevice();
-  const bindings = spec.inputs.map((input, k) => `@group(0) @binding(${k}) var<storage, read> in${k}: array<${input.type}>;`);
-  const code = `${kernelPreamble()}
+  const bindings = spec.inputs.map((input, k) => `@group(3) @binding(${20 + k}) var<storage, read> in${k}: array<${input.type}>;`);
+  const code = `${spec.imports ?? ''}
+${kernelPreamble(spec.module ?? gltfLobe.module)}
 ${spec.extra ?? ''}
 ${bindings.join('\n')}
-@group(0) @binding(${spec.inputs.length}) var<storage, read_write> out: array<f32>;
+@group(3) @binding(${20 + spec.inputs.length}) var<storage, read_write> out: array<f32>;
 @compute @workgroup_size(${WORKGROUP}) fn main(@builtin(global_invocation_id) gid: vec3u) {
   let i = gid.x;
   if (i >= ${spec.count}u) { return; }
@@ -72,10 +109,12 @@ ${spec.body}
 `;
   const buffers = spec.inputs.map((input) => uploadBuffer(device, input.data));
   const output = device.createBuffer({ size: Math.max(16, spec.outputFloats * 4), usage: BufferUsage.STORAGE | BufferUsage.COPY_SRC });
-  buffers.push(output);
-  await runCompute(device, code, 'main', buffers, Math.ceil(spec.count / WORKGROUP));
+  const resources: Record<string, GPUBuffer> = { out: output };
+  buffers.forEach((b, k) => (resources[`in${k}`] = b));
+  await runTestProgram(device, { source: code, resources, workgroups: Math.ceil(spec.count / WORKGROUP) });
   const result = new Float32Array(await readBuffer(device, output, spec.outputFloats * 4));
   for (const b of buffers) b.destroy();
+  output.destroy();
   return result;
 }
 
@@ -229,10 +268,11 @@ export function sampleAt(data: Float32Array, i: number): SampleView {
 }
 
 /** n calls of bsdf_sample(m, wo, u_lobe, u) with independent uniform (u_lobe, u) from a hash of (seed, i). */
-export function sampleOnGpu(m: GltfBsdfMaterial, wo: Vec3, n: number, seed: number): Promise<Float32Array> {
+export function sampleOnGpu<P = GltfBsdfMaterial>(m: P, wo: Vec3, n: number, seed: number, lobe: LobeUnderTest<P> = gltfLobe as unknown as LobeUnderTest<P>): Promise<Float32Array> {
   return runKernel({
+    module: lobe.module,
     inputs: [
-      { data: packMaterials([m]), type: 'TestMaterial' },
+      { data: packParams(lobe, [m]), type: 'TestMaterial' },
       { data: packDirections([wo]), type: 'vec4f' },
     ],
     outputFloats: n * SAMPLE_STRIDE,
@@ -267,11 +307,19 @@ export interface CellIntegrals {
  * Integrates bsdf_pdf and bsdf_eval * cos over an (theta in [0, pi/2], phi in [0, 2 pi)) grid, each
  * cell by an s x s midpoint rule in (theta, phi) with the sin(theta) Jacobian.
  */
-export async function integrateCellsOnGpu(m: GltfBsdfMaterial, wo: Vec3, nTheta: number, nPhi: number, s: number): Promise<CellIntegrals> {
+export async function integrateCellsOnGpu<P = GltfBsdfMaterial>(
+  m: P,
+  wo: Vec3,
+  nTheta: number,
+  nPhi: number,
+  s: number,
+  lobe: LobeUnderTest<P> = gltfLobe as unknown as LobeUnderTest<P>,
+): Promise<CellIntegrals> {
   const cells = nTheta * nPhi;
   const raw = await runKernel({
+    module: lobe.module,
     inputs: [
-      { data: packMaterials([m]), type: 'TestMaterial' },
+      { data: packParams(lobe, [m]), type: 'TestMaterial' },
       { data: packDirections([wo]), type: 'vec4f' },
     ],
     outputFloats: cells * 4,

@@ -3,17 +3,20 @@ import assert from 'node:assert/strict';
 import { createRayTracingRenderPlan, renderPlanMaxDepthLimit } from '../../src/planning/render-plan.ts';
 import { russianRouletteSurvivalProbability } from '../../src/planning/russian-roulette.ts';
 import {
-  materialLayout,
+  materialCoreLayout,
   pathStateLayout,
+  rayWorkItemLayout,
   rendererWavefrontAccumulationTexelBytes,
-  triangleAttributesLayout,
+  sampleRecordLayout,
+  shadingWorkItemLayout,
+  surfaceRecordLayout,
   wavefrontRecordLayouts,
 } from '../../src/gpu-layout/records.ts';
 import { allocateStructArray, readStruct, writeStruct, type StructLayout } from '../../src/gpu-layout/struct-layout.ts';
-import { createRecordsWgsl } from '../../src/shaders/records-module.ts';
 import { BufferUsage } from '../../src/gpu/webgpu-constants.ts';
 import { GpuRendererError } from '../../src/errors/gpu-renderer-error.ts';
-import { readBuffer, runCompute, testDevice, uploadBuffer } from '../helpers/gpu.ts';
+import { readBuffer, testDevice, uploadBuffer } from '../helpers/gpu.ts';
+import { runTestProgram } from '../helpers/wgsl.ts';
 
 test('the plan exposes the snapshot boundary, RT-first stage order, bands and AS policy', () => {
   const plan = createRayTracingRenderPlan({ snapshotId: 'visual-snapshot-42' });
@@ -30,7 +33,7 @@ test('the plan exposes the snapshot boundary, RT-first stage order, bands and AS
   // acceleration structure is ready before any ray is traced.
   const firstTrace = plan.renderStages.findIndex((s) => s.tracesRays);
   assert.ok(firstTrace > keys.indexOf('accelerationUpdate'));
-  assert.ok(firstTrace < keys.indexOf('shade'));
+  assert.ok(firstTrace < keys.indexOf('materialEvaluation') && firstTrace < keys.indexOf('scatter'));
   // Bands tile the distance axis without gaps.
   plan.representationBands.forEach((band, i) => {
     assert.ok(band.endDistance > band.startDistance);
@@ -39,7 +42,7 @@ test('the plan exposes the snapshot boundary, RT-first stage order, bands and AS
   assert.equal(plan.representationBands[0]!.startDistance, 0);
   assert.equal(plan.representationBands.at(-1)!.endDistance, Infinity);
   assert.equal(plan.accelerationStructure.nodeContract.layout, wavefrontRecordLayouts.BvhNode);
-  assert.equal(plan.accelerationStructure.primitiveContract.layout, wavefrontRecordLayouts.Triangle);
+  assert.equal(plan.accelerationStructure.primitiveContract.layout, wavefrontRecordLayouts.Primitive);
   assert.equal(plan.accelerationStructure.updatePolicy.staticGeometry, 'build-once-reuse');
   assert.ok(Object.isFrozen(plan.wavefront.contracts) && Object.isFrozen(plan.renderStages[0]));
   assert.throws(() => {
@@ -50,17 +53,17 @@ test('the plan exposes the snapshot boundary, RT-first stage order, bands and AS
 test('wavefront contracts are the very record layouts of records.ts; queue capacity is tileSize^2', () => {
   const plan = createRayTracingRenderPlan({ snapshotId: 's', tileSize: 64, maxDepth: 12 });
   const c = plan.wavefront.contracts;
-  assert.equal(c.ray.layout, pathStateLayout);
-  assert.equal(c.hit.layout, pathStateLayout);
-  assert.deepEqual(c.hit.fields.map((f) => f.name), ['hitT', 'hitPrimitive', 'hitU', 'hitV']);
-  for (const f of c.hit.fields) assert.ok(pathStateLayout.fields.includes(f), `${f.name} is PathState's own field object`);
-  assert.equal(c.surface.layout, triangleAttributesLayout);
-  assert.equal(c.material.layout, materialLayout);
-  assert.equal(c.medium.field, pathStateLayout.fields.find((f) => f.name === 'mediumId'));
+  assert.equal(c.path.layout, pathStateLayout);
+  assert.equal(c.ray.layout, rayWorkItemLayout);
+  assert.equal(c.hit.layout, shadingWorkItemLayout);
+  assert.equal(c.surface.layout, surfaceRecordLayout);
+  assert.equal(c.material.layout, materialCoreLayout);
+  assert.equal(c.sample.layout, sampleRecordLayout);
+  assert.equal(c.medium.field, pathStateLayout.fields.find((f) => f.name === 'media'));
   assert.equal(c.medium.stackLimit, 4);
   assert.equal(c.accumulation.bytes, rendererWavefrontAccumulationTexelBytes);
   assert.equal(c.accumulation.bytes, 16);
-  for (const contract of [c.ray, c.surface, c.material, c.shadowRay]) {
+  for (const contract of [c.path, c.ray, c.hit, c.surface, c.material, c.shadowRay, c.sample]) {
     assert.equal(contract.bytes, contract.layout.size);
     assert.equal(contract.version, contract.layout.version);
     assert.equal(wavefrontRecordLayouts[contract.name as keyof typeof wavefrontRecordLayouts], contract.layout);
@@ -69,6 +72,7 @@ test('wavefront contracts are the very record layouts of records.ts; queue capac
   assert.equal(q.strategy, 'tile-bounded-ping-pong');
   assert.equal(q.capacity, 64 * 64);
   assert.equal(q.pathRecordBytes, pathStateLayout.size);
+  assert.equal(q.hitRecordBytes, shadingWorkItemLayout.size);
   assert.equal(createRayTracingRenderPlan({ snapshotId: 's' }).wavefront.queueLayout.capacity, 256 * 256);
   const t = plan.wavefront.termination;
   assert.deepEqual([...t.completion], ['emissive', 'environment']);
@@ -90,7 +94,7 @@ function sample(layout: StructLayout): Record<string, number[]> {
 test('records packed with the plan contracts read back field by field through a WGSL kernel', async () => {
   const device = await testDevice();
   const c = createRayTracingRenderPlan({ snapshotId: 'gpu' }).wavefront.contracts;
-  for (const contract of [c.ray, c.surface, c.material]) {
+  for (const contract of [c.path, c.ray, c.hit, c.surface, c.material, c.sample]) {
     const layout = contract.layout;
     const data = allocateStructArray(layout, 2);
     const view = new DataView(data);
@@ -100,7 +104,7 @@ test('records packed with the plan contracts read back field by field through a 
     const lines = layout.fields.flatMap((f) =>
       Array.from({ length: f.components }, (_, k) => `  out[w] = bitcast<u32>(src[1].${f.name}${f.components > 1 ? `[${k}]` : ''}); w += 1u;`),
     );
-    const code = `${createRecordsWgsl()}
+    const code = `import package::layout::records::${contract.name};
 @group(0) @binding(0) var<storage, read> src: array<${contract.name}>;
 @group(0) @binding(1) var<storage, read_write> out: array<u32>;
 @compute @workgroup_size(1) fn main() {
@@ -109,7 +113,7 @@ ${lines.join('\n')}
 }`;
     const src = uploadBuffer(device, data);
     const out = device.createBuffer({ size: words * 4, usage: BufferUsage.STORAGE | BufferUsage.COPY_SRC });
-    await runCompute(device, code, 'main', [src, out], 1);
+    await runTestProgram(device, { source: code, resources: { src, out }, workgroups: 1 });
     const got = new DataView(await readBuffer(device, out));
     const expected = readStruct(layout, view, 1);
     let w = 0;
@@ -123,23 +127,17 @@ ${lines.join('\n')}
     src.destroy();
     out.destroy();
   }
-  // The hit sub-record: the plan's hit field offsets address the words the kernel writes.
-  const layout = c.hit.layout;
-  const data = allocateStructArray(layout, 1);
-  const code = `${createRecordsWgsl()}
+  // The medium stack field: the plan's offset addresses the word a kernel writes.
+  const data = allocateStructArray(pathStateLayout, 1);
+  const code = `import package::layout::records::PathState;
 @group(0) @binding(0) var<storage, read_write> paths: array<PathState>;
 @compute @workgroup_size(1) fn main() {
-  paths[0].hitT = 2.5; paths[0].hitPrimitive = 77u; paths[0].hitU = 0.125; paths[0].hitV = 0.375; paths[0].mediumId = 3u;
+  paths[0].media = 0x04030201u;
 }`;
   const buffer = uploadBuffer(device, data);
-  await runCompute(device, code, 'main', [buffer], 1);
+  await runTestProgram(device, { source: code, resources: { paths: buffer }, workgroups: 1 });
   const back = new DataView(await readBuffer(device, buffer));
-  const at = (name: string): number => c.hit.fields.find((f) => f.name === name)!.offset;
-  assert.equal(back.getFloat32(at('hitT'), true), 2.5);
-  assert.equal(back.getUint32(at('hitPrimitive'), true), 77);
-  assert.equal(back.getFloat32(at('hitU'), true), 0.125);
-  assert.equal(back.getFloat32(at('hitV'), true), 0.375);
-  assert.equal(back.getUint32(c.medium.field.offset, true), 3);
+  assert.equal(back.getUint32(c.medium.field.offset, true), 0x04030201);
   buffer.destroy();
 });
 

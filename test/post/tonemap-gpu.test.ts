@@ -1,12 +1,15 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { composeShader } from '../../src/shaders/modules.ts';
 import { applyToneMapping, linearToSrgb, toneMappingModeIds } from '../../src/post/tone-mapping.ts';
-import { readBuffer, runCompute, testDevice, uploadBuffer } from '../helpers/gpu.ts';
+import { readBuffer, testDevice, uploadBuffer } from '../helpers/gpu.ts';
+import { runTestProgram } from '../helpers/wgsl.ts';
 
 // For each input colour the kernel writes the three tone mappings and the sRGB encoding of the
 // clamped input, so one dispatch checks every WGSL function against its JS mirror.
 const kernel = /* wgsl */ `
+import package::post::display::tonemap::apply_tone_mapping;
+import package::shaders::lib::color::linear_to_srgb;
+import package::layout::constants::{TONE_MAPPING_NEUTRAL, TONE_MAPPING_ACES, TONE_MAPPING_LINEAR, TONE_MAPPING_AGX};
 @group(0) @binding(0) var<storage, read> inputs: array<vec4f>;
 @group(0) @binding(1) var<storage, read_write> outputs: array<vec4f>;
 
@@ -15,10 +18,11 @@ fn main(@builtin(global_invocation_id) id: vec3u) {
   let i = id.x;
   if (i >= arrayLength(&inputs)) { return; }
   let c = inputs[i].xyz;
-  outputs[4u * i + 0u] = vec4f(apply_tone_mapping(c, TONE_MAPPING_NEUTRAL), 1.0);
-  outputs[4u * i + 1u] = vec4f(apply_tone_mapping(c, TONE_MAPPING_ACES), 1.0);
-  outputs[4u * i + 2u] = vec4f(apply_tone_mapping(c, TONE_MAPPING_LINEAR), 1.0);
-  outputs[4u * i + 3u] = vec4f(linear_to_srgb(clamp(c, vec3f(0.0), vec3f(1.0))), 1.0);
+  outputs[5u * i + 0u] = vec4f(apply_tone_mapping(c, TONE_MAPPING_NEUTRAL), 1.0);
+  outputs[5u * i + 1u] = vec4f(apply_tone_mapping(c, TONE_MAPPING_ACES), 1.0);
+  outputs[5u * i + 2u] = vec4f(apply_tone_mapping(c, TONE_MAPPING_LINEAR), 1.0);
+  outputs[5u * i + 3u] = vec4f(apply_tone_mapping(c, TONE_MAPPING_AGX), 1.0);
+  outputs[5u * i + 4u] = vec4f(linear_to_srgb(clamp(c, vec3f(0.0), vec3f(1.0))), 1.0);
 }
 `;
 
@@ -43,9 +47,8 @@ function inputs(): Float32Array {
   return data;
 }
 
-// The modes tonemap.wgsl implements, in the order the kernel writes them. AgX is CPU-only until
-// TONE_MAPPING_AGX lands in the WGSL; then add it here and to the kernel above.
-const wgslModes = ['neutral', 'aces', 'linear'] as const;
+// The modes tonemap.wesl implements, in the order the kernel writes them.
+const wgslModes = ['neutral', 'aces', 'linear', 'agx'] as const;
 
 test('WGSL tone mapping and sRGB encoding equal the JS mirror', async () => {
   assert.deepEqual(toneMappingModeIds, { neutral: 0, aces: 1, linear: 2, agx: 3 });
@@ -53,8 +56,8 @@ test('WGSL tone mapping and sRGB encoding equal the JS mirror', async () => {
   const data = inputs();
   const n = data.length / 4;
   const input = uploadBuffer(device, data);
-  const output = uploadBuffer(device, new Float32Array(n * 16));
-  await runCompute(device, `${composeShader(['tonemap'])}\n${kernel}`, 'main', [input, output], Math.ceil(n / 64));
+  const output = uploadBuffer(device, new Float32Array(n * 20));
+  await runTestProgram(device, { source: kernel, resources: { inputs: input, outputs: output }, workgroups: Math.ceil(n / 64) });
   const out = new Float32Array(await readBuffer(device, output));
   for (let i = 0; i < n; i++) {
     const c = [data[4 * i], data[4 * i + 1], data[4 * i + 2]];
@@ -64,7 +67,7 @@ test('WGSL tone mapping and sRGB encoding equal the JS mirror', async () => {
     ];
     expected.forEach((e, k) => {
       for (let ch = 0; ch < 3; ch++) {
-        const got = out[16 * i + 4 * k + ch];
+        const got = out[20 * i + 4 * k + ch];
         const err = Math.abs(got - e[ch]);
         // f32 on the GPU vs f64 here: a few ulps of pow/division, far below one 8-bit display step.
         assert.ok(err < 2e-5, `input ${c} output ${k} channel ${ch}: gpu ${got} vs js ${e[ch]}`);

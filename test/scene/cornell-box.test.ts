@@ -1,7 +1,7 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { createCornellBoxScene } from '../../src/scene/cornell-box.ts';
-import type { WavefrontMeshInput } from '../../src/scene/types.ts';
+import type { WavefrontMaterialInput, WavefrontMeshInput } from '../../src/scene/types.ts';
 
 type V3 = [number, number, number];
 const sub = (a: V3, b: V3): V3 => [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
@@ -97,13 +97,19 @@ test('the blocks are closed boxes on the floor whose faces point out of the bloc
   assert.ok(Math.abs(height('tall-block') - 2 * height('short-block')) < 1e-12);
 });
 
+/** The Cornell box's meshes carry their materials inline. */
+function materialOf(mesh: WavefrontMeshInput): WavefrontMaterialInput {
+  assert.equal(typeof mesh.material, 'object', 'an inline material');
+  return mesh.material as WavefrontMaterialInput;
+}
+
 test('the light is an emitter just below the ceiling facing down', () => {
   const light = meshes.get('light')!;
   for (const t of triangles(light)) {
     assert.ok(dot(t.n, [0, -1, 0]) > 1 - 1e-12, `light normal ${t.n}`);
     assert.ok(t.centroid[1] < 1 && t.centroid[1] > 0.95);
   }
-  const m = light.material!;
+  const m = materialOf(light);
   const e = Array.from(m.emissiveFactor!).map((x) => x * m.emissiveStrength!);
   assert.deepEqual(e.map((x) => Math.round(x * 1e9) / 1e9), [17, 12, 4]);
   assert.ok(Math.max(...Array.from(m.emissiveFactor!)) <= 1);
@@ -111,20 +117,21 @@ test('the light is an emitter just below the ceiling facing down', () => {
   // No other mesh emits.
   for (const [id, mesh] of meshes) {
     if (id === 'light') continue;
-    assert.ok(!mesh.material?.emissiveFactor || Array.from(mesh.material.emissiveFactor).every((x) => x === 0), id);
+    const material = materialOf(mesh);
+    assert.ok(!material.emissiveFactor || Array.from(material.emissiveFactor).every((x) => x === 0), id);
     assert.equal(mesh.emission, undefined);
   }
 });
 
 test('materials are Lambertian with the classic albedos; black environment; camera looks in through the open side', () => {
-  const albedo = (id: string) => Array.from(meshes.get(id)!.material!.baseColorFactor!);
+  const albedo = (id: string) => Array.from(materialOf(meshes.get(id)!).baseColorFactor!);
   assert.deepEqual(albedo('left-wall'), [0.63, 0.065, 0.05]);
   assert.deepEqual(albedo('right-wall'), [0.14, 0.45, 0.091]);
   for (const id of ['floor', 'ceiling', 'back-wall', 'short-block', 'tall-block']) assert.deepEqual(albedo(id), [0.73, 0.73, 0.73]);
   for (const mesh of meshes.values()) {
-    assert.equal(mesh.material!.metallicFactor, 0);
-    assert.equal(mesh.material!.roughnessFactor, 1);
-    assert.equal(mesh.material!.ior, 1);
+    assert.equal(materialOf(mesh).metallicFactor, 0);
+    assert.equal(materialOf(mesh).roughnessFactor, 1);
+    assert.equal(materialOf(mesh).ior, 1);
   }
   assert.deepEqual(Array.from(scene.environment!.color), [0, 0, 0]);
   const cam = scene.camera!;
