@@ -4,6 +4,6 @@ export { normalizeMaterial, normalizeTextureRef, defaultMaterial, type Normalize
 export { normalizeWavefrontSceneObject, type NormalizedSceneObject } from './scene-object.ts';
 export { normalizeWavefrontInstance, type NormalizedInstance } from './instance.ts';
 export { normalizeWavefrontScene, type NormalizedScene } from './normalize-scene.ts';
-export { maxCoordinateMagnitude, maxRadiance } from './limits.ts';
+export { maxCoordinateMagnitude, maxRadiance, maxEmittedPower } from './limits.ts';
 export { createCornellBoxScene } from './cornell-box.ts';
 export { parseSceneFile, validateSceneDescription } from './scene-file.ts';

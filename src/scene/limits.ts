@@ -13,3 +13,10 @@ export const maxCoordinateMagnitude = 1e18;
  * headroom below float32's maximum (3.4e38).
  */
 export const maxRadiance = 1e20;
+
+/**
+ * Emitted power of a scene (sum of area x luminance x pi over its emitters): next-event estimation
+ * divides a light's radiance by its pdf, which carries the light's area and the total power, so
+ * this keeps those float32 quotients far from overflow.
+ */
+export const maxEmittedPower = 1e30;

@@ -88,3 +88,51 @@ test('after rejected input the shared device still renders a valid scene', async
   renderer.destroy();
   await assert.rejects(renderer.renderFrame(), (e: unknown) => e instanceof GpuRendererError && e.code === 'RENDERER_DESTROYED');
 });
+
+test('instances, shared materials and textures: typed errors naming the field', async () => {
+  const quad = { positions: [0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0], indices: [0, 1, 2, 0, 2, 3], uvs: [0, 0, 1, 0, 1, 1, 0, 1] };
+  await expectError({ meshes: [quad], instances: [{ mesh: 1 }] }, 'INVALID_INSTANCE', 'instances[0].mesh');
+  await expectError({ meshes: [quad], instances: [{ mesh: 0, transform: [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0] }] }, 'INVALID_INSTANCE', 'instances[0].transform');
+  await expectError({ meshes: [quad], instances: [{ mesh: 0, transform: [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, NaN, 1] }] }, 'INVALID_INSTANCE', 'instances[0].transform[14]');
+  await expectError({ meshes: [quad], instances: [{ mesh: 0, transform: [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1] }] }, 'INVALID_INSTANCE', 'instances[0].transform');
+  await expectError({ meshes: [quad], instances: [{ mesh: 0, transform: [1, 0, 0, 1, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1] }] }, 'INVALID_INSTANCE', 'instances[0].transform');
+  await expectError({ meshes: [quad], instances: [{ mesh: 0, material: 0 }] }, 'INVALID_INSTANCE', 'instances[0].material');
+  await expectError({ meshes: [{ ...quad, material: 2 }], materials: [{}] }, 'INVALID_MESH', 'meshes[0].material');
+  await expectError({ meshes: [quad], materials: [{ roughnessFactor: -1 }] }, 'INVALID_MATERIAL', 'materials[0].roughnessFactor');
+  await expectError({ meshes: [quad], materials: [{ baseColorTexture: { index: 0 } }] }, 'INVALID_MATERIAL', 'materials[0].baseColorTexture.index');
+  await expectError({ meshes: [quad], materials: [{ shininess: 3 }] }, 'INVALID_MATERIAL', 'materials[0].shininess');
+  await expectError({ meshes: [{ ...quad, material: { baseColorTexture: { index: 0, texCoord: 2 } } }], textures: [{ image: { width: 1, height: 1, data: new Uint8Array(4) } }] }, 'INVALID_MESH', 'meshes[0].material.baseColorTexture.texCoord');
+  // Extension factors are part of the format, but this version refuses to render them as something else.
+  await expectError({ meshes: [quad], materials: [{ transmissionFactor: 1 }] }, 'INVALID_MATERIAL', 'materials[0].transmissionFactor');
+  const texture = (image: unknown) => ({ meshes: [{ ...quad, material: { baseColorTexture: { index: 0 } } }], textures: [{ image }] });
+  await expectError(texture({ width: 2, height: 2, data: new Uint8Array(15) }), 'INVALID_TEXTURE', 'textures[0].image.data');
+  await expectError(texture({ width: 0, height: 2, data: new Uint8Array(0) }), 'INVALID_TEXTURE', /textures\[0\]\.image\.width|images\[0\]\.width/);
+  await expectError({ ...texture({ width: 1, height: 1, data: new Uint8Array(4) }), textures: [{ image: 3 }] }, 'INVALID_TEXTURE', /textures\[0\]\.image/);
+  await expectError({ meshes: [{ ...quad, tangents: [1, 0, 0, 2, 1, 0, 0, 1, 1, 0, 0, 1, 1, 0, 0, 1] }] }, 'INVALID_MESH', 'meshes[0].tangents[3]');
+  await expectError({ meshes: [{ ...quad, colors: [1, 1, 1, 1, 1, 1] }] }, 'INVALID_MESH', 'meshes[0].colors');
+});
+
+test('finite inputs whose products overflow get typed errors, never RangeErrors or non-finite pixels', async () => {
+  // An emissive factor of 3.4e38 would make the light's power infinite in the alias table.
+  await expectError({ meshes: [{ positions: tri, material: { emissiveFactor: [3.4e38, 0, 0] } }] }, 'INVALID_MESH', 'meshes[0].material.emissiveFactor');
+  await expectError({ meshes: [{ positions: tri, material: { emissiveFactor: [1e10, 0, 0], emissiveStrength: 1e15 } }] }, 'INVALID_MESH', 'meshes[0].material.emissiveFactor');
+  await expectError({ meshes: [{ positions: tri, emission: [1, 1, 1, 3e38] }] }, 'INVALID_MESH', 'meshes[0].emission');
+  await expectError({ sceneObjects: [{ type: 'sphere', center: [0, 0, 0], radius: 1, emission: [1, 1, 1, 1e30] }] }, 'INVALID_SCENE_OBJECT', 'sceneObjects[0].emission');
+  await expectError({ environment: { color: [1e30, 0, 0] } }, 'INVALID_OPTION', 'environment.color[0]');
+  // Coordinates whose squares overflow float32.
+  await expectError({ meshes: [{ positions: [0, 0, 0, 1e20, 0, 0, 0, 1, 0] }] }, 'INVALID_MESH', 'meshes[0].positions[3]');
+  // A light whose emission is finite but whose area times radiance overflows.
+  await expectError({ meshes: [{ positions: [0, 0, 0, 1e17, 0, 0, 0, 1e17, 0], material: { emissiveFactor: [1, 1, 1], emissiveStrength: 1e19 } }] }, 'SCENE_TOO_LARGE', 'meshes[0].material');
+});
+
+test('options the renderer does not know are typed errors naming them', async () => {
+  await expectError({ environmentMap: { width: 1, height: 1, data: new Float32Array(4) } }, 'INVALID_OPTION', 'environmentMap');
+  await expectError({ denoise: true }, 'INVALID_OPTION', 'denoise');
+  await expectError({ camera: { position: [0, 0, 1], target: [0, 0, 0], fov: 40 } }, 'INVALID_OPTION', 'camera.fov');
+  await expectError({ environment: { color: [1, 1, 1], intensity: 2 } }, 'INVALID_OPTION', 'environment.intensity');
+  await expectError({ lights: [{ type: 'point', position: [0, 1, 0] }] }, 'INVALID_OPTION', 'lights');
+  const device = await testDevice();
+  const renderer = await createWavefrontPathTracingComputeRenderer({ device, width: 8, height: 8 });
+  await assert.rejects(renderer.renderFrame({ samplesPerPixel: 1, frameTimeBudgetMs: 5 } as never), (e: unknown) => e instanceof GpuRendererError && e.field === 'frameTimeBudgetMs');
+  renderer.destroy();
+});

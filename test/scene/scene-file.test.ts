@@ -64,7 +64,7 @@ test('rejects invalid JSON and non-object roots', () => {
 });
 
 test('rejects unknown keys at every level, naming the field path', () => {
-  expectError(edited((s) => (s.lights = [])), 'lights', /unknown key "lights"/);
+  expectError(edited((s) => (s.skybox = [])), 'skybox', /unknown key "skybox"/);
   expectError(edited((s) => (s.camera.fov = 40)), 'camera.fov');
   expectError(edited((s) => (s.meshes[1].colour = [1, 1, 1])), 'meshes[1].colour');
   expectError(edited((s) => (s.meshes[0].material.roughness = 1)), 'meshes[0].material.roughness');
@@ -97,6 +97,6 @@ test('rejects wrong types, naming the field path', () => {
 test('errors without a path do not mention one', () => {
   assert.throws(
     () => parseSceneFile('{"x":1}'),
-    (e: unknown) => e instanceof GpuRendererError && e.message === 'x: unknown key "x" (expected one of camera, environment, meshes, sceneObjects)',
+    (e: unknown) => e instanceof GpuRendererError && e.message === 'x: unknown key "x" (expected one of camera, environment, meshes, instances, materials, textures, images, sceneObjects, lights)',
   );
 });

@@ -4,6 +4,7 @@ import { lightRecordLayout } from '../../gpu-layout/records.ts';
 import { allocateStructArray, writeStruct } from '../../gpu-layout/struct-layout.ts';
 import { buildAliasTable } from '../../lighting/alias-table.ts';
 import { luminance } from '../../lighting/emissive-lights.ts';
+import { maxEmittedPower } from '../../scene/limits.ts';
 import { isEmissive } from '../../scene/material.ts';
 import type { NormalizedScene } from '../../scene/normalize-scene.ts';
 import { applyTextureTransform } from '../../materials/textures/texture-transform.ts';
@@ -61,8 +62,8 @@ export function buildLightTable(scene: NormalizedScene, infoOffset: TextureInfoO
       const e2 = [w[6]! - w[0]!, w[7]! - w[1]!, w[8]! - w[2]!];
       const area = 0.5 * Math.hypot(e1[1]! * e2[2]! - e1[2]! * e2[1]!, e1[2]! * e2[0]! - e1[0]! * e2[2]!, e1[0]! * e2[1]! - e1[1]! * e2[0]!);
       power[k] = area * luminance(material.emission) * sides * Math.PI;
-      if (!Number.isFinite(power[k]!)) {
-        throw new GpuRendererError('SCENE_TOO_LARGE', `the emitted power of an emitting triangle overflows (area ${area}, emission ${material.emission.join(', ')})`, {
+      if (!(power[k]! <= maxEmittedPower)) {
+        throw new GpuRendererError('SCENE_TOO_LARGE', `an emitting triangle's power ${power[k]} (area ${area}, emission ${material.emission.join(', ')}) exceeds the supported ${maxEmittedPower}`, {
           field: scene.materialFields[materialIndex]!,
         });
       }
@@ -89,7 +90,7 @@ export function buildLightTable(scene: NormalizedScene, infoOffset: TextureInfoO
     }
   });
   const totalPower = power.reduce((a, b) => a + b, 0);
-  if (!Number.isFinite(totalPower)) throw new GpuRendererError('SCENE_TOO_LARGE', 'the total emitted power of the scene overflows', { field: 'meshes' });
+  if (!(totalPower <= maxEmittedPower)) throw new GpuRendererError('SCENE_TOO_LARGE', `the scene's emitted power ${totalPower} exceeds the supported ${maxEmittedPower}`, { field: 'meshes' });
   if (!(totalPower > 0)) return { records: allocateStructArray(lightRecordLayout, 1), count: 0, lightBase: lightBase.fill(INDEX_NONE), totalPower: 0 };
   const table = buildAliasTable(power);
   for (let l = 0; l < count; l++) {

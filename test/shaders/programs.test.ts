@@ -1,0 +1,31 @@
+// The linked programs respect WebGPU's default limits by construction: every kernel binds at most
+// 8 storage buffers per stage and uses at most 4 bind groups, and its bindings are exactly those of
+// the binding table (reflection of the linked WGSL, not a hand-kept list).
+import { test } from 'node:test';
+import assert from 'node:assert/strict';
+import { pathTracerBindings } from '../../src/gpu-layout/bindings.ts';
+import { displayBindings } from '../../src/shaders/display-bindings.ts';
+import { generatedPrograms } from '../../src/shaders/programs.generated.ts';
+import { programSpecs } from '../../src/shaders/programs.ts';
+import { shaderFeatures } from '../../src/shaders/features.ts';
+import { createWavefrontPathTracingComputeShaderSource } from '../../src/pathtracer/index.ts';
+import { testDevice } from '../helpers/gpu.ts';
+
+test('every program binds within WebGPU default limits and only table bindings', () => {
+  for (const [name, spec] of Object.entries(programSpecs)) {
+    const program = generatedPrograms[name as keyof typeof generatedPrograms];
+    const table: Record<string, { kind: string; group: number }> = spec.bindings === 'display' ? displayBindings : pathTracerBindings;
+    const storage = program.bindings.filter((b) => table[b]!.kind === 'storage').length;
+    assert.ok(storage <= 8, `${name} binds ${storage} storage buffers`);
+    assert.ok(Math.max(...program.bindings.map((b) => table[b]!.group)) < 4, `${name} uses more than 4 bind groups`);
+    for (const o of program.overrides) assert.ok(o in shaderFeatures, `${name}: override ${o} is a shader feature`);
+  }
+});
+
+test('the shipped WGSL of every program compiles on WebGPU without errors', async () => {
+  const device = await testDevice();
+  for (const [name, code] of Object.entries(createWavefrontPathTracingComputeShaderSource())) {
+    const info = await device.createShaderModule({ code }).getCompilationInfo();
+    assert.deepEqual(info.messages.filter((m) => m.type === 'error').map((m) => m.message), [], name);
+  }
+});
