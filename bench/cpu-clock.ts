@@ -33,20 +33,31 @@ export function isCpuAdapter(adapter: string | null | undefined): boolean {
 
 /**
  * For harnesses that do not report worker CPU time themselves (those before it existed): find the
- * timed frame among the marks that performance.now() left, as the pair of calls whose interval
- * equals the reported `seconds` (within `tolerance`, e.g. 0.0005 for seconds rounded to ms) and
- * starts after `notBefore`. A frame timed by the harness encloses the renderer's own timing of
- * the same frame, so a candidate enclosing another candidate wins; otherwise the earliest one.
- * Returns the mark indices, or null when nothing matches.
+ * timed frame among the marks that performance.now() left, as a pair of calls, starting at or after
+ * `notBefore`, whose interval equals the reported `seconds` (within `tolerance`, e.g. 0.0005 for
+ * seconds rounded to ms). Time-sliced work (the asynchronous BVH build checks the clock every few
+ * thousand steps) leaves thousands of marks, so some of their pairs match any duration by chance;
+ * the timed frame is the matching pair with the fewest marks inside it (a frame is one await of
+ * renderFrame, which reads the clock only at its start and end), then the one with the most worker
+ * CPU. Returns the mark indices, or null when nothing matches.
  */
 export function findTimedInterval(marks: readonly CpuMark[], seconds: number, tolerance: number, notBefore = 0): [number, number] | null {
-  const candidates: Array<[number, number]> = [];
-  for (let j = notBefore + 1; j < marks.length; j++) {
-    for (let i = notBefore; i < j; i++) {
-      if (Math.abs((marks[j]!.wallMs - marks[i]!.wallMs) / 1000 - seconds) <= tolerance) candidates.push([i, j]);
+  let best: { i: number; j: number; inside: number; cpu: number } | null = null;
+  for (let i = notBefore; i < marks.length; i++) {
+    const lo = marks[i]!.wallMs + (seconds - tolerance) * 1000;
+    const hi = marks[i]!.wallMs + (seconds + tolerance) * 1000;
+    // Marks are in time order: binary search for the first one at or after `lo`.
+    let a = i + 1, b = marks.length;
+    while (a < b) {
+      const mid = (a + b) >> 1;
+      if (marks[mid]!.wallMs < lo) a = mid + 1;
+      else b = mid;
+    }
+    for (let j = a; j < marks.length && marks[j]!.wallMs <= hi; j++) {
+      const inside = j - i - 1;
+      const cpu = workerCpuSeconds(marks[i]!, marks[j]!);
+      if (!best || inside < best.inside || (inside === best.inside && cpu > best.cpu)) best = { i, j, inside, cpu };
     }
   }
-  if (candidates.length === 0) return null;
-  const enclosing = candidates.find(([i, j]) => candidates.some(([k, l]) => k > i && l < j));
-  return enclosing ?? candidates[0]!;
+  return best ? [best.i, best.j] : null;
 }

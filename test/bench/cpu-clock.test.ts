@@ -31,14 +31,19 @@ test('CPU used by the main thread is not', () => {
 
 const mark = (wallMs: number, processCpuUs = 0): CpuMark => ({ wallMs, processCpuUs, mainThreadCpuUs: 0 });
 
-test('the harness interval enclosing the renderer interval is chosen over an earlier coincidence', () => {
-  // 0-2: an unrelated 2.0004 s stretch; 3..6: harness t0, renderer start, renderer end, harness t1.
-  const marks = [mark(0), mark(500), mark(2000.4), mark(10_000, 1e6), mark(10_000.05, 1e6), mark(12_000.1, 5e6), mark(12_000.2, 5.2e6)];
-  assert.deepEqual(findTimedInterval(marks, 2.0, 0.0005), [3, 6]);
-  assert.equal(workerCpuSeconds(marks[3]!, marks[6]!), 4.2);
-  assert.deepEqual(findTimedInterval(marks, 2.0, 0.0005, 3), [3, 6], 'also when searching after a previous frame');
-  assert.equal(findTimedInterval(marks, 7, 0.0005), null);
-  assert.deepEqual(findTimedInterval([mark(1), mark(1001)], 1, 1e-9), [0, 1], 'a single exact candidate');
+test('the timed frame is found among many chance matches from time-sliced work', () => {
+  // 0..400: a time-sliced build reading the clock every 10 ms (no worker CPU), so many of its pairs
+  // last 2.0 s; then harness t0, renderer start, renderer end, harness t1 around a 2.0 s frame.
+  const marks: CpuMark[] = [];
+  for (let k = 0; k <= 400; k++) marks.push(mark(k * 10));
+  const t0 = marks.length;
+  marks.push(mark(10_000, 1e6), mark(10_000.05, 1e6), mark(12_000.1, 5e6), mark(12_000.5, 5.2e6));
+  const found = findTimedInterval(marks, 2.0, 0.0005);
+  assert.deepEqual(found, [t0 + 1, t0 + 2], 'the renderer pair: nothing inside it');
+  assert.equal(workerCpuSeconds(marks[found![0]]!, marks[found![1]]!), 4);
+  assert.deepEqual(findTimedInterval(marks, 2.0, 0.0005, t0 + 2), null, 'nothing after the frame');
+  assert.deepEqual(findTimedInterval(marks, 2.0005, 0.00002), [t0, t0 + 3], 'the harness pair when only it matches');
+  assert.equal(findTimedInterval(marks, 1.234, 0.0005), null);
 });
 
 test('CPU adapters are recognised by name', () => {
