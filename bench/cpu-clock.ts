@@ -5,7 +5,11 @@
  * other processes competing for the cores: a busy machine stretches the wall time, not the work.
  * The main thread is left out because it spends the frame polling for the GPU to finish, which
  * takes whatever CPU it is given. Meaningless on a real GPU (the work is not on the CPU there).
+ *
+ * Each mark also reads the machine's busy time (Linux /proc/stat, including steal time from the
+ * hypervisor), so the load of *other* processes during a frame can be shown beside the figures.
  */
+import { readFileSync } from 'node:fs';
 
 export interface CpuMark {
   wallMs: number;
@@ -13,12 +17,42 @@ export interface CpuMark {
   processCpuUs: number;
   /** user + system of the calling (main) thread, µs */
   mainThreadCpuUs: number;
+  /** Busy time of all the machine's cores, µs (10 ms resolution); null where /proc/stat is absent. */
+  machineBusyUs: number | null;
+}
+
+/** USER_HZ: the unit of /proc/stat, 100 on every mainstream Linux architecture. */
+const USER_HZ = 100;
+let procStatReadable = true;
+
+/** user + nice + system + irq + softirq + steal of the `cpu` line of /proc/stat, µs. */
+function machineBusyUs(): number | null {
+  if (!procStatReadable) return null;
+  try {
+    const line = readFileSync('/proc/stat', 'latin1').slice(0, 256).split('\n', 1)[0]!;
+    const [user, nice, system, , , irq, softirq, steal] = line.trim().split(/\s+/).slice(1).map(Number);
+    return ((user! + nice! + system! + irq! + softirq! + (steal ?? 0)) * 1e6) / USER_HZ;
+  } catch {
+    procStatReadable = false;
+    return null;
+  }
 }
 
 export function cpuMark(wallMs = performance.now()): CpuMark {
   const p = process.cpuUsage();
   const t = process.threadCpuUsage();
-  return { wallMs, processCpuUs: p.user + p.system, mainThreadCpuUs: t.user + t.system };
+  return { wallMs, processCpuUs: p.user + p.system, mainThreadCpuUs: t.user + t.system, machineBusyUs: machineBusyUs() };
+}
+
+/**
+ * Cores' worth of CPU that other processes (and the hypervisor, as steal) took between two marks:
+ * the machine's busy time minus this process's, over the wall time. Null without /proc/stat.
+ * Its resolution is 10 ms of CPU, i.e. about 0.01 core over a frame of a few seconds.
+ */
+export function otherLoadCores(from: CpuMark, to: CpuMark): number | null {
+  if (from.machineBusyUs === null || to.machineBusyUs === null || to.wallMs <= from.wallMs) return null;
+  const others = to.machineBusyUs - from.machineBusyUs - (to.processCpuUs - from.processCpuUs);
+  return others / 1e6 / ((to.wallMs - from.wallMs) / 1000);
 }
 
 /** CPU seconds spent off the main thread between two marks. */

@@ -5,12 +5,13 @@
  * after RESULT_PREFIX (anything else the harness prints is ignored by the parent). `--probe` only
  * checks that the module and its imports load.
  *
- * Rows without `workerCpuSeconds` (harnesses older than that field) get it here: performance.now()
- * is wrapped, for every version alike, to also note CPU times (two getrusage calls, ~µs), and the
- * timed frame is found among those notes by its reported duration (cpu-clock.ts).
+ * Rows without `workerCpuSeconds` (harnesses older than that field) get it, and `otherLoadCores`,
+ * here: performance.now() is wrapped, for every version alike, to also note CPU times (two getrusage
+ * calls and a read of /proc/stat, some µs), and the timed frame is found among those notes by its
+ * reported duration (cpu-clock.ts).
  */
 import { RESULT_PREFIX } from './child-protocol.ts';
-import { cpuMark, findTimedInterval, workerCpuSeconds } from './cpu-clock.ts';
+import { cpuMark, findTimedInterval, otherLoadCores, workerCpuSeconds } from './cpu-clock.ts';
 import type { CpuMark } from './cpu-clock.ts';
 
 const [moduleUrl, mode] = process.argv.slice(2);
@@ -42,6 +43,7 @@ function addWorkerCpu(result: unknown): unknown {
     const found = findTimedInterval(marks, row.seconds, 0.0005 + 1e-7, notBefore);
     if (!found) continue;
     row.workerCpuSeconds = workerCpuSeconds(marks[found[0]]!, marks[found[1]]!);
+    row.otherLoadCores = otherLoadCores(marks[found[0]]!, marks[found[1]]!);
     row.workerCpuSecondsFrom = 'bench/pathtracer-child.ts (performance.now marks)';
     notBefore = found[1];
   }

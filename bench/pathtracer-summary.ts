@@ -16,6 +16,8 @@ export interface SceneMeasurement {
   raysPerSecond: number | null;
   /** Samples per CPU second off the main thread (cpu-clock.ts); null when not measured. */
   samplesPerWorkerCpuSecond: number | null;
+  /** Cores' worth of CPU other processes used during the timed frame; null when not measured. */
+  otherLoadCores: number | null;
   adapter: string | null;
 }
 
@@ -43,6 +45,7 @@ export interface VersionSceneSummary {
   samplesPerSecond: Spread;
   raysPerSecond: Spread | null;
   samplesPerWorkerCpuSecond: Spread | null;
+  otherLoadCores: Spread | null;
   adapter: string | null;
   triangles: number | null;
   resolution: string | null;
@@ -120,6 +123,7 @@ export function readPathTracerResult(value: unknown): SceneMeasurement[] {
       samplesPerSecond,
       raysPerSecond,
       samplesPerWorkerCpuSecond,
+      otherLoadCores: finite(row.otherLoadCores) ? row.otherLoadCores : null,
       adapter: typeof row.adapter === 'string' ? row.adapter : null,
     };
   });
@@ -129,12 +133,14 @@ function summarizeVersion(measurements: SceneMeasurement[]): VersionSceneSummary
   if (measurements.length === 0) return null;
   const rays = measurements.map((m) => m.raysPerSecond).filter((r): r is number => r !== null);
   const cpu = measurements.map((m) => m.samplesPerWorkerCpuSecond).filter((r): r is number => r !== null);
+  const load = measurements.map((m) => m.otherLoadCores).filter((r): r is number => r !== null);
   const first = measurements[0]!;
   return {
     runs: measurements.length,
     samplesPerSecond: spread(measurements.map((m) => m.samplesPerSecond)),
     raysPerSecond: rays.length === measurements.length ? spread(rays) : null,
     samplesPerWorkerCpuSecond: cpu.length === measurements.length ? spread(cpu) : null,
+    otherLoadCores: load.length === measurements.length ? spread(load) : null,
     adapter: first.adapter,
     triangles: first.triangles,
     resolution: first.resolution,

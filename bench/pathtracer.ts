@@ -11,7 +11,7 @@
 import { createWavefrontPathTracingComputeRenderer } from '../src/pathtracer/index.ts';
 import { createCornellBoxScene } from '../src/scene/cornell-box.ts';
 import type { WavefrontMeshInput } from '../src/scene/types.ts';
-import { cpuMark, workerCpuSeconds } from './cpu-clock.ts';
+import { cpuMark, otherLoadCores, workerCpuSeconds } from './cpu-clock.ts';
 
 export interface PathTracerBenchRow {
   scene: string;
@@ -26,6 +26,8 @@ export interface PathTracerBenchRow {
   gpuMs: number | null;
   /** CPU seconds of the threads other than the main one during the timed frame (cpu-clock.ts). */
   workerCpuSeconds: number;
+  /** Cores' worth of CPU other processes used during the timed frame (cpu-clock.ts); null off Linux. */
+  otherLoadCores: number | null;
   /** Renderer creation: scene preparation, BVH build, pipelines. */
   setupSeconds: number;
   adapter: string;
@@ -100,6 +102,7 @@ async function measure(scene: string, meshes: WavefrontMeshInput[], width: numbe
       rays: stats.rays.total,
       gpuMs: stats.gpuTimeMs,
       workerCpuSeconds: workerCpuSeconds(cpu0, cpu1),
+      otherLoadCores: otherLoadCores(cpu0, cpu1),
       setupSeconds,
       adapter: snapshot.adapter,
     };

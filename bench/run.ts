@@ -7,6 +7,7 @@
  */
 import { spawnSync } from 'node:child_process';
 import { existsSync } from 'node:fs';
+import { availableParallelism } from 'node:os';
 import { mkdir, readFile, writeFile } from 'node:fs/promises';
 import { fileURLToPath } from 'node:url';
 import { parseBaselineFile, parseBenchOptions } from './bench-options.ts';
@@ -66,6 +67,8 @@ if (options.bvh) {
 }
 
 const fixed = (v: number, digits = 3): string => v.toFixed(digits);
+/** Other processes' load (cores) above which the wall-clock figures get a note. */
+const BUSY_CORES = 0.2;
 const mega = (v: number): string => fixed(v / 1e6);
 function range(s: Spread | null): string {
   if (!s) return '';
@@ -84,6 +87,7 @@ function printScene(scene: SceneComparison, names: Record<'baseline' | 'current'
     'rays/s (M)': v.raysPerSecond ? mega(v.raysPerSecond.median) : '',
     'samples/s min–max': range(v.samplesPerSecond),
     ...(cpu ? { 'samples/CPU-s (M)': v.samplesPerWorkerCpuSecond ? mega(v.samplesPerWorkerCpuSecond.median) : '', 'samples/CPU-s min–max': range(v.samplesPerWorkerCpuSecond) } : {}),
+    'other load (cores)': v.otherLoadCores ? `${fixed(v.otherLoadCores.median, 2)} (max ${fixed(v.otherLoadCores.max, 2)})` : '',
     runs: v.runs,
   });
   if (scene.baseline) rows[names.baseline] = row(scene.baseline);
@@ -100,12 +104,20 @@ function printScene(scene: SceneComparison, names: Record<'baseline' | 'current'
           'samples/CPU-s min–max': perRound(scene.pairedSamplesPerWorkerCpuSecondRatios),
         }
         : {}),
+      'other load (cores)': '',
       runs: scene.pairedSamplesPerSecondRatios.length,
     };
   }
   console.table(rows);
   console.log(`adapter: ${adapters.join(' | ') || 'unknown'}`);
   if (scene.mismatch) console.log(`WARNING: ${scene.mismatch}`);
+  const busiest = Math.max(scene.baseline?.otherLoadCores?.max ?? 0, scene.current?.otherLoadCores?.max ?? 0);
+  if (busiest > BUSY_CORES) {
+    console.log(
+      `NOTE: other processes used up to ${fixed(busiest, 2)} cores during timed frames (of ${availableParallelism()}): wall-clock figures are unreliable` +
+        (cpu ? '; samples/CPU-s is far less affected' : '') + '.',
+    );
+  }
 }
 
 let currentFailed = false;

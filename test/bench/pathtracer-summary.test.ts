@@ -36,7 +36,7 @@ test('unusable results are rejected with a reason', () => {
 });
 
 function m(scene: string, samplesPerSecond: number, extra: Partial<SceneMeasurement> = {}): SceneMeasurement {
-  return { scene, triangles: 36, resolution: '8x8', spp: 4, seconds: 1, samplesPerSecond, raysPerSecond: samplesPerSecond * 5, samplesPerWorkerCpuSecond: samplesPerSecond / 2, adapter: 'gpu', ...extra };
+  return { scene, triangles: 36, resolution: '8x8', spp: 4, seconds: 1, samplesPerSecond, raysPerSecond: samplesPerSecond * 5, samplesPerWorkerCpuSecond: samplesPerSecond / 2, otherLoadCores: 0.1, adapter: 'gpu', ...extra };
 }
 const run = (version: 'baseline' | 'current', round: number, scenes: SceneMeasurement[]): PathTracerRun => ({ version, round, childSeconds: 1, scenes });
 
@@ -61,6 +61,7 @@ test('medians per version, ratio of medians, paired ratios per round', () => {
   assert.equal(a!.samplesPerWorkerCpuSecondRatio, 48 / 55);
   assert.deepEqual(a!.pairedSamplesPerWorkerCpuSecondRatios, [45 / 50, 60.5 / 55, 48 / 60]);
   assert.equal(b!.samplesPerSecondRatio, 1);
+  assert.equal(a!.current!.otherLoadCores!.median, 0.1);
   assert.equal(a!.mismatch, null);
 });
 
