@@ -3,21 +3,33 @@
  * than 1M triangles (a finely tessellated sphere inside the box), naming the adapter. The first frame
  * of each scene warms up pipelines (shader JIT on software drivers) and is not counted.
  * BENCH_SPP overrides the measured samples per pixel.
+ *
+ * bench/run.ts runs this file in a child process per version (pathtracer-child.ts), the baseline's
+ * own copy for the baseline, and matches scenes by name: keep the scene names and the workload
+ * (scenes, size, maxDepth, spp) as they are, or the comparison with older versions is void.
  */
 import { createWavefrontPathTracingComputeRenderer } from '../src/pathtracer/index.ts';
 import { createCornellBoxScene } from '../src/scene/cornell-box.ts';
 import type { WavefrontMeshInput } from '../src/scene/types.ts';
+import { cpuMark, otherLoadCores, workerCpuSeconds } from './cpu-clock.ts';
 
 export interface PathTracerBenchRow {
   scene: string;
   triangles: number;
   resolution: string;
   spp: number;
+  /** Wall clock of the timed renderFrame. */
   seconds: number;
-  'samples/s (M)': number;
-  'rays/s (M)': number;
-  'gpu ms': number | null;
-  'BVH build s': number;
+  samplesPerSecond: number;
+  raysPerSecond: number;
+  rays: number;
+  gpuMs: number | null;
+  /** CPU seconds of the threads other than the main one during the timed frame (cpu-clock.ts). */
+  workerCpuSeconds: number;
+  /** Cores' worth of CPU other processes used during the timed frame (cpu-clock.ts); null off Linux. */
+  otherLoadCores: number | null;
+  /** Renderer creation: scene preparation, BVH build, pipelines. */
+  setupSeconds: number;
   adapter: string;
 }
 
@@ -73,20 +85,25 @@ async function measure(scene: string, meshes: WavefrontMeshInput[], width: numbe
   const setupSeconds = (performance.now() - started) / 1000;
   try {
     await renderer.renderFrame({ samplesPerPixel: 1 }); // warm-up
+    const cpu0 = cpuMark();
     const t0 = performance.now();
     const stats = await renderer.renderFrame({ samplesPerPixel: spp });
     const seconds = (performance.now() - t0) / 1000;
+    const cpu1 = cpuMark();
     const snapshot = renderer.getSnapshot();
     return {
       scene,
       triangles: snapshot.triangleCount,
       resolution: `${width}x${height}`,
       spp,
-      seconds: Number(seconds.toFixed(3)),
-      'samples/s (M)': Number(((width * height * spp) / seconds / 1e6).toFixed(3)),
-      'rays/s (M)': Number((stats.rays.total / seconds / 1e6).toFixed(3)),
-      'gpu ms': stats.gpuTimeMs === null ? null : Number(stats.gpuTimeMs.toFixed(1)),
-      'BVH build s': Number(setupSeconds.toFixed(2)),
+      seconds,
+      samplesPerSecond: (width * height * spp) / seconds,
+      raysPerSecond: stats.rays.total / seconds,
+      rays: stats.rays.total,
+      gpuMs: stats.gpuTimeMs,
+      workerCpuSeconds: workerCpuSeconds(cpu0, cpu1),
+      otherLoadCores: otherLoadCores(cpu0, cpu1),
+      setupSeconds,
       adapter: snapshot.adapter,
     };
   } finally {

@@ -1,37 +1,171 @@
 /**
- * `npm run bench`: the BVH build benchmark, then the path tracer benchmark when bench/pathtracer.ts
- * exists. Prints tables and writes every result to bench/results/bench.json. Figures, not pass/fail.
+ * `npm run bench [-- options]`: the BVH build benchmark, then the path tracer benchmark of this
+ * version beside a baseline git ref (bench/baseline.json), each in its own child processes,
+ * alternated round by round. Prints tables and writes every result to bench/results/bench.json.
+ * Figures, not pass/fail: a missing or broken baseline only narrows the run to this version.
+ * Options and environment knobs: bench/bench-options.ts and bench/README.md.
  */
+import { spawnSync } from 'node:child_process';
 import { existsSync } from 'node:fs';
-import { mkdir, writeFile } from 'node:fs/promises';
+import { availableParallelism } from 'node:os';
+import { mkdir, readFile, writeFile } from 'node:fs/promises';
+import { fileURLToPath } from 'node:url';
+import { parseBaselineFile, parseBenchOptions } from './bench-options.ts';
+import type { BaselineFile, BenchOptions } from './bench-options.ts';
+import { prepareBaselineCheckout } from './baseline-worktree.ts';
+import type { BaselineCheckout } from './baseline-worktree.ts';
+import { runPathTracerComparison } from './pathtracer-compare.ts';
+import type { PathTracerVersion } from './pathtracer-compare.ts';
+import type { SceneComparison, Spread, VersionSceneSummary } from './pathtracer-summary.ts';
 import { runBvhBenchmark } from './bvh.ts';
+import { isCpuAdapter } from './cpu-clock.ts';
 
-const results: Record<string, unknown> = { date: new Date().toISOString(), platform: `${process.platform} ${process.arch}`, node: process.version };
+const repoRoot = fileURLToPath(new URL('..', import.meta.url)).replace(/\/$/, '');
 
-console.log('BVH build: ours vs three-mesh-bvh');
-const bvh = await runBvhBenchmark();
-results.bvh = bvh;
-console.table(
-  bvh.rows.map((r) => ({ mesh: r.mesh, builder: r.builder, 'build ms (median)': Math.round(r.buildMsMedian), runs: r.runs, 'SAH cost': Number(r.sahCost.toFixed(2)), nodes: r.nodeCount })),
-);
-console.table(
-  bvh.ratios.map((r) => ({ mesh: r.mesh, 'ours / theirs': r.versus, 'build time': Number(r.buildTimeRatio.toFixed(2)), 'SAH cost': Number(r.sahCostRatio.toFixed(3)) })),
-);
-
-const pathTracerModule = new URL('./pathtracer.ts', import.meta.url);
-if (existsSync(pathTracerModule)) {
-  console.log('Path tracer');
-  const mod = (await import(pathTracerModule.href)) as { runPathTracerBenchmark?: () => Promise<unknown> };
-  if (typeof mod.runPathTracerBenchmark === 'function') {
-    const pt = await mod.runPathTracerBenchmark();
-    results.pathtracer = pt;
-    const rows = (pt as { rows?: unknown }).rows;
-    if (Array.isArray(rows)) console.table(rows);
-    else console.log(JSON.stringify(pt, null, 2));
+async function readBaselineFile(): Promise<BaselineFile | null> {
+  try {
+    return parseBaselineFile(await readFile(new URL('./baseline.json', import.meta.url), 'utf8'));
+  } catch (error) {
+    console.log(`bench/baseline.json unreadable (${(error as Error).message}); no default baseline`);
+    return null;
   }
 }
 
+function gitOut(args: string[]): string | null {
+  const r = spawnSync('git', args, { cwd: repoRoot, encoding: 'utf8', stdio: ['ignore', 'pipe', 'ignore'] });
+  return r.status === 0 ? r.stdout.trim() : null;
+}
+
+let options: BenchOptions;
+try {
+  options = parseBenchOptions(process.argv.slice(2), process.env, await readBaselineFile());
+} catch (error) {
+  console.error(`bench: ${(error as Error).message}\nusage: npm run bench -- [--baseline <ref> | --no-baseline] [--rounds <n>] [--no-bvh]`);
+  process.exit(2);
+}
+
+const results: Record<string, unknown> = {
+  date: new Date().toISOString(),
+  platform: `${process.platform} ${process.arch}`,
+  node: process.version,
+  options,
+};
+const began = performance.now();
+
+if (options.bvh) {
+  console.log('BVH build: ours vs three-mesh-bvh');
+  const bvh = await runBvhBenchmark();
+  results.bvh = bvh;
+  console.table(
+    bvh.rows.map((r) => ({ mesh: r.mesh, builder: r.builder, 'build ms (median)': Math.round(r.buildMsMedian), runs: r.runs, 'SAH cost': Number(r.sahCost.toFixed(2)), nodes: r.nodeCount })),
+  );
+  console.table(
+    bvh.ratios.map((r) => ({ mesh: r.mesh, 'ours / theirs': r.versus, 'build time': Number(r.buildTimeRatio.toFixed(2)), 'SAH cost': Number(r.sahCostRatio.toFixed(3)) })),
+  );
+} else {
+  console.log('BVH build benchmark skipped (--no-bvh / BENCH_BVH=0)');
+}
+
+const fixed = (v: number, digits = 3): string => v.toFixed(digits);
+/** Other processes' load (cores) above which the wall-clock figures get a note. */
+const BUSY_CORES = 0.2;
+const mega = (v: number): string => fixed(v / 1e6);
+function range(s: Spread | null): string {
+  if (!s) return '';
+  const half = ((s.max - s.min) / 2 / s.median) * 100;
+  return `${mega(s.min)}–${mega(s.max)} (±${half.toFixed(1)}%)`;
+}
+
+function printScene(scene: SceneComparison, names: Record<'baseline' | 'current', string>): void {
+  const any = (scene.current ?? scene.baseline)!;
+  console.log(`\n${scene.scene}: ${any.resolution ?? '?'}, ${any.spp ?? '?'} spp, ${any.triangles?.toLocaleString('en-US') ?? '?'} triangles`);
+  const adapters = [...new Set([scene.baseline?.adapter, scene.current?.adapter].filter((a): a is string => !!a))];
+  const cpu = adapters.length > 0 && adapters.every(isCpuAdapter);
+  const rows: Record<string, Record<string, string | number>> = {};
+  const row = (v: VersionSceneSummary): Record<string, string | number> => ({
+    'samples/s (M)': mega(v.samplesPerSecond.median),
+    'rays/s (M)': v.raysPerSecond ? mega(v.raysPerSecond.median) : '',
+    'samples/s min–max': range(v.samplesPerSecond),
+    ...(cpu ? { 'samples/CPU-s (M)': v.samplesPerWorkerCpuSecond ? mega(v.samplesPerWorkerCpuSecond.median) : '', 'samples/CPU-s min–max': range(v.samplesPerWorkerCpuSecond) } : {}),
+    'other load (cores)': v.otherLoadCores ? `${fixed(v.otherLoadCores.median, 2)} (max ${fixed(v.otherLoadCores.max, 2)})` : '',
+    runs: v.runs,
+  });
+  if (scene.baseline) rows[names.baseline] = row(scene.baseline);
+  if (scene.current) rows[names.current] = row(scene.current);
+  if (scene.samplesPerSecondRatio !== null) {
+    const perRound = (ratios: number[]): string => (ratios.length ? `rounds: ${ratios.map((r) => fixed(r, 2)).join(' ')}` : '');
+    rows['current / baseline'] = {
+      'samples/s (M)': fixed(scene.samplesPerSecondRatio),
+      'rays/s (M)': scene.raysPerSecondRatio === null ? '' : fixed(scene.raysPerSecondRatio),
+      'samples/s min–max': perRound(scene.pairedSamplesPerSecondRatios),
+      ...(cpu
+        ? {
+          'samples/CPU-s (M)': scene.samplesPerWorkerCpuSecondRatio === null ? '' : fixed(scene.samplesPerWorkerCpuSecondRatio),
+          'samples/CPU-s min–max': perRound(scene.pairedSamplesPerWorkerCpuSecondRatios),
+        }
+        : {}),
+      'other load (cores)': '',
+      runs: scene.pairedSamplesPerSecondRatios.length,
+    };
+  }
+  console.table(rows);
+  console.log(`adapter: ${adapters.join(' | ') || 'unknown'}`);
+  if (scene.mismatch) console.log(`WARNING: ${scene.mismatch}`);
+  const busiest = Math.max(scene.baseline?.otherLoadCores?.max ?? 0, scene.current?.otherLoadCores?.max ?? 0);
+  if (busiest > BUSY_CORES) {
+    console.log(
+      `NOTE: other processes used up to ${fixed(busiest, 2)} cores during timed frames (of ${availableParallelism()}): wall-clock figures are unreliable` +
+        (cpu ? '; samples/CPU-s is far less affected' : '') + '.',
+    );
+  }
+}
+
+let currentFailed = false;
+if (existsSync(new URL('./pathtracer.ts', import.meta.url))) {
+  console.log(`\nPath tracer: child processes, versions alternated, ${options.rounds} round(s), BENCH_SPP=${process.env.BENCH_SPP ?? '(default)'}`);
+  const versions: PathTracerVersion[] = [];
+  let baseline: BaselineCheckout | { ok: false; reason: string } | null = null;
+  if (options.baseline.enabled) {
+    const { ref, source } = options.baseline;
+    console.log(`  baseline: ${ref} (from ${source})`);
+    try {
+      baseline = await prepareBaselineCheckout(ref, { repoRoot, ...(process.env.BENCH_BASELINE_DIR ? { worktreesDir: process.env.BENCH_BASELINE_DIR } : {}) });
+    } catch (error) {
+      baseline = { ok: false, ref, reason: `unexpected error: ${(error as Error).stack ?? String(error)}` };
+    }
+    if (baseline.ok) {
+      console.log(`  baseline ${baseline.shortSha} "${baseline.subject}" in ${baseline.dir} (${baseline.reused ? 'reused' : 'new'}, node_modules: ${baseline.modules})`);
+      versions.push({ label: 'baseline', name: `baseline ${baseline.shortSha}`, root: baseline.dir });
+    } else {
+      console.log(`  BASELINE SKIPPED: ${baseline.reason}\n  measuring the current version only`);
+    }
+  } else {
+    console.log(`  baseline off (${options.baseline.reason}): measuring the current version only`);
+  }
+  const head = gitOut(['rev-parse', '--short', 'HEAD']);
+  const dirty = head !== null && gitOut(['status', '--porcelain', '--untracked-files=no']) !== '';
+  const currentName = `current ${head ?? ''}${dirty ? '+changes' : ''}`.trim();
+  versions.push({ label: 'current', name: currentName, root: repoRoot });
+
+  const childTimeoutMs = Number(process.env.BENCH_CHILD_TIMEOUT_S ?? 1800) * 1000;
+  const comparison = await runPathTracerComparison(versions, options.rounds, { childTimeoutMs });
+  const names = { baseline: versions.find((v) => v.label === 'baseline')?.name ?? 'baseline', current: currentName };
+  for (const scene of comparison.scenes) printScene(scene, names);
+  currentFailed = comparison.runs.some((r) => r.version === 'current' && r.error !== undefined);
+
+  results.pathtracer = {
+    spp: process.env.BENCH_SPP ?? 'harness default',
+    baseline: options.baseline.enabled
+      ? { ref: options.baseline.ref, source: options.baseline.source, description: options.baseline.description, checkout: baseline }
+      : { off: options.baseline.reason },
+    current: { name: currentName, head, uncommittedChanges: dirty },
+    ...comparison,
+  };
+}
+
+results.totalSeconds = (performance.now() - began) / 1000;
 const outDir = new URL('./results/', import.meta.url);
 await mkdir(outDir, { recursive: true });
 await writeFile(new URL('bench.json', outDir), `${JSON.stringify(results, null, 2)}\n`);
-console.log(`wrote ${new URL('bench.json', outDir).pathname}`);
+console.log(`\nwrote ${new URL('bench.json', outDir).pathname} (bench took ${Math.round((performance.now() - began) / 1000)} s)`);
+if (currentFailed) process.exitCode = 1;

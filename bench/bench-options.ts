@@ -1,0 +1,75 @@
+/**
+ * Options of `npm run bench`, from the command line (after `--`) and the environment:
+ *   --baseline <ref> | BENCH_BASELINE_REF   git ref to compare against (default: bench/baseline.json)
+ *   --no-baseline    | BENCH_BASELINE=0     measure the current version only
+ *   --rounds <n>     | BENCH_ROUNDS         child processes per version, alternated (default 3)
+ *   --no-bvh         | BENCH_BVH=0          skip the BVH build benchmark
+ * The command line wins over the environment. BENCH_SPP is read by the path tracer harnesses.
+ */
+import { parseArgs } from 'node:util';
+
+export const DEFAULT_ROUNDS = 3;
+
+export type BaselineChoice =
+  | { enabled: true; ref: string; source: 'command line' | 'BENCH_BASELINE_REF' | 'bench/baseline.json'; description: string | null }
+  | { enabled: false; reason: string };
+
+export interface BenchOptions {
+  baseline: BaselineChoice;
+  /** Child processes per version; versions alternate (baseline, current, baseline, current, ...). */
+  rounds: number;
+  bvh: boolean;
+}
+
+export interface BaselineFile {
+  ref: string;
+  description?: string;
+}
+
+const OFF = new Set(['0', 'false', 'no', 'off']);
+
+function positiveInteger(text: string, name: string): number {
+  const n = Number(text);
+  if (!Number.isInteger(n) || n < 1) throw new Error(`${name}: expected a positive integer, got ${JSON.stringify(text)}`);
+  return n;
+}
+
+/** Parses bench/baseline.json's text; null when it does not name a ref. */
+export function parseBaselineFile(text: string): BaselineFile | null {
+  const value = JSON.parse(text) as unknown;
+  if (typeof value !== 'object' || value === null) return null;
+  const { ref, description } = value as Record<string, unknown>;
+  if (typeof ref !== 'string' || ref.trim() === '') return null;
+  return { ref: ref.trim(), ...(typeof description === 'string' ? { description } : {}) };
+}
+
+export function parseBenchOptions(
+  argv: readonly string[],
+  env: Readonly<Record<string, string | undefined>>,
+  baselineFile: BaselineFile | null,
+): BenchOptions {
+  const { values } = parseArgs({
+    args: [...argv],
+    options: {
+      baseline: { type: 'string' },
+      'no-baseline': { type: 'boolean' },
+      rounds: { type: 'string' },
+      'no-bvh': { type: 'boolean' },
+    },
+    strict: true,
+    allowPositionals: false,
+  });
+
+  let baseline: BaselineChoice;
+  if (values['no-baseline']) baseline = { enabled: false, reason: '--no-baseline' };
+  else if (values.baseline !== undefined) baseline = { enabled: true, ref: values.baseline, source: 'command line', description: null };
+  else if (env.BENCH_BASELINE !== undefined && OFF.has(env.BENCH_BASELINE.toLowerCase())) baseline = { enabled: false, reason: `BENCH_BASELINE=${env.BENCH_BASELINE}` };
+  else if (env.BENCH_BASELINE_REF) baseline = { enabled: true, ref: env.BENCH_BASELINE_REF, source: 'BENCH_BASELINE_REF', description: null };
+  else if (baselineFile) baseline = { enabled: true, ref: baselineFile.ref, source: 'bench/baseline.json', description: baselineFile.description ?? null };
+  else baseline = { enabled: false, reason: 'bench/baseline.json names no ref' };
+
+  const roundsText = values.rounds ?? env.BENCH_ROUNDS;
+  const rounds = roundsText === undefined || roundsText === '' ? DEFAULT_ROUNDS : positiveInteger(roundsText, values.rounds !== undefined ? '--rounds' : 'BENCH_ROUNDS');
+  const bvh = !values['no-bvh'] && !(env.BENCH_BVH !== undefined && OFF.has(env.BENCH_BVH.toLowerCase()));
+  return { baseline, rounds, bvh };
+}

@@ -1,0 +1,50 @@
+// npm run bench options: command line over environment over bench/baseline.json.
+import { test } from 'node:test';
+import assert from 'node:assert/strict';
+import { DEFAULT_ROUNDS, parseBaselineFile, parseBenchOptions } from '../../bench/bench-options.ts';
+
+const file = { ref: 'ca1bff9', description: 'main before the rewrite' };
+
+test('defaults: the ref of bench/baseline.json, default rounds, BVH on', () => {
+  const o = parseBenchOptions([], {}, file);
+  assert.deepEqual(o.baseline, { enabled: true, ref: 'ca1bff9', source: 'bench/baseline.json', description: 'main before the rewrite' });
+  assert.equal(o.rounds, DEFAULT_ROUNDS);
+  assert.ok(o.rounds >= 2, 'at least two rounds per version by default');
+  assert.equal(o.bvh, true);
+});
+
+test('BENCH_BASELINE_REF overrides the file, --baseline overrides both', () => {
+  const env = parseBenchOptions([], { BENCH_BASELINE_REF: 'v1' }, file).baseline;
+  assert.ok(env.enabled);
+  assert.equal(env.ref, 'v1');
+  assert.equal(env.source, 'BENCH_BASELINE_REF');
+  const o = parseBenchOptions(['--baseline', 'main~3'], { BENCH_BASELINE_REF: 'v1' }, file);
+  assert.ok(o.baseline.enabled);
+  assert.equal(o.baseline.ref, 'main~3');
+  assert.equal(o.baseline.source, 'command line');
+});
+
+test('--no-baseline and BENCH_BASELINE=0 switch the baseline off; --baseline wins over the variable', () => {
+  assert.equal(parseBenchOptions(['--no-baseline'], {}, file).baseline.enabled, false);
+  for (const off of ['0', 'false', 'OFF']) assert.equal(parseBenchOptions([], { BENCH_BASELINE: off }, file).baseline.enabled, false);
+  assert.equal(parseBenchOptions([], { BENCH_BASELINE: '1' }, file).baseline.enabled, true);
+  assert.equal(parseBenchOptions(['--baseline', 'x'], { BENCH_BASELINE: '0' }, file).baseline.enabled, true);
+  assert.equal(parseBenchOptions([], {}, null).baseline.enabled, false, 'no file and no override: no baseline');
+});
+
+test('rounds and BVH knobs; bad values are rejected', () => {
+  assert.equal(parseBenchOptions(['--rounds', '5'], { BENCH_ROUNDS: '3' }, file).rounds, 5);
+  assert.equal(parseBenchOptions([], { BENCH_ROUNDS: '3' }, file).rounds, 3);
+  assert.throws(() => parseBenchOptions(['--rounds', '0'], {}, file), /--rounds/);
+  assert.throws(() => parseBenchOptions([], { BENCH_ROUNDS: '1.5' }, file), /BENCH_ROUNDS/);
+  assert.throws(() => parseBenchOptions(['--bogus'], {}, file));
+  assert.equal(parseBenchOptions(['--no-bvh'], {}, file).bvh, false);
+  assert.equal(parseBenchOptions([], { BENCH_BVH: '0' }, file).bvh, false);
+});
+
+test('bench/baseline.json: a ref is required, the description is optional', () => {
+  assert.deepEqual(parseBaselineFile('{ "ref": " abc123 " }'), { ref: 'abc123' });
+  assert.equal(parseBaselineFile('{ "description": "x" }'), null);
+  assert.equal(parseBaselineFile('[]'), null);
+  assert.throws(() => parseBaselineFile('{'));
+});
