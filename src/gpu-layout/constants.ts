@@ -33,12 +33,10 @@ export const rendererWavefrontComputeStatsStride = queueCounterCount * 4;
 
 /** Offsets (in u32) of the indirect dispatch argument triples in the dispatchArgs buffer. */
 export const dispatchArgSlots = {
+  /** Sized by the bounce's input ray queue; every stage of the bounce uses it. */
   intersect: 0,
-  hits: 4,
-  misses: 8,
-  shadows: 12,
 } as const;
-export const dispatchArgWords = 16;
+export const dispatchArgWords = 4;
 
 /** Paths continuing to this depth or deeper play Russian roulette (pbrt-v4 survival rule). */
 export const russianRouletteStartDepth = 3;

@@ -12,8 +12,10 @@ interface Offsets {
 /**
  * Encodes waves into a compute pass: per wave, camera rays, then per bounce (pbrt-v4's wavefront
  * stages) intersection -> escaped rays and material evaluation -> scatter -> shadow rays, all sized
- * by indirect dispatches whose arguments the GPU writes from its own queue lengths, then the
- * accumulation. `waves[i]` uses wave-uniform slot i; bounce d uses bounce slot d.
+ * by one indirect dispatch whose arguments the GPU writes from the ray queue's length (each stage
+ * stops at its own queue's length; one sizing kernel per bounce keeps the dispatch count, which a
+ * CPU driver pays for in synchronisation, low), then the accumulation. `waves[i]` uses
+ * wave-uniform slot i; bounce d uses bounce slot d.
  */
 export class WavefrontEncoder {
   private readonly kernels: Record<WavefrontKernelName, KernelBindGroups>;
@@ -40,16 +42,13 @@ export class WavefrontEncoder {
       this.dispatch(pass, 'camera', o, Math.ceil(pixels / wg));
       for (let d = 0; d <= maxDepth; d++) {
         o.bounce = d * dynamicUniformStride;
+        const rays = { indirect: dispatchArgSlots.intersect };
         this.dispatch(pass, 'prepareIntersect', o, 1);
-        this.dispatch(pass, 'intersect', o, { indirect: dispatchArgSlots.intersect });
-        this.dispatch(pass, 'prepareShading', o, 1);
-        this.dispatch(pass, 'escaped', o, { indirect: dispatchArgSlots.misses });
-        this.dispatch(pass, 'evaluateMaterials', o, { indirect: dispatchArgSlots.hits });
-        this.dispatch(pass, 'scatter', o, { indirect: dispatchArgSlots.hits });
-        if (d < maxDepth) {
-          this.dispatch(pass, 'prepareShadow', o, 1);
-          this.dispatch(pass, 'shadow', o, { indirect: dispatchArgSlots.shadows });
-        }
+        this.dispatch(pass, 'intersect', o, rays);
+        this.dispatch(pass, 'escaped', o, rays);
+        this.dispatch(pass, 'evaluateMaterials', o, rays);
+        this.dispatch(pass, 'scatter', o, rays);
+        if (d < maxDepth) this.dispatch(pass, 'shadow', o, rays);
       }
       this.dispatch(pass, 'accumulate', o, Math.ceil(pixels / wg));
     });

@@ -11,11 +11,9 @@ export const wavefrontKernels = {
   camera: { program: 'camera', entryPoint: 'generate_camera_rays' },
   prepareIntersect: { program: 'prepare', entryPoint: 'prepare_intersect' },
   intersect: { program: 'intersect', entryPoint: 'intersect_closest' },
-  prepareShading: { program: 'prepare', entryPoint: 'prepare_shading' },
   escaped: { program: 'escaped', entryPoint: 'shade_escaped' },
   evaluateMaterials: { program: 'evaluateMaterials', entryPoint: 'evaluate_materials' },
   scatter: { program: 'scatter', entryPoint: 'scatter_paths' },
-  prepareShadow: { program: 'prepare', entryPoint: 'prepare_shadow' },
   shadow: { program: 'shadow', entryPoint: 'trace_shadow_rays' },
   accumulate: { program: 'accumulate', entryPoint: 'accumulate_samples' },
 } as const satisfies Record<string, { program: ProgramName; entryPoint: string }>;
