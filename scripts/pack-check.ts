@@ -116,7 +116,9 @@ try {
           strict: true,
           noEmit: true,
           target: 'es2022',
-          lib: ['es2023', 'dom'],
+          // ES2025 (esnext) for Float16Array, which @gltf-transform/core's declarations (the
+          // glTF loader's Document type) use.
+          lib: ['esnext', 'dom'],
           module: 'nodenext',
           moduleResolution: 'nodenext',
           // TypeScript 7's lib.dom declares WebGPU itself (adding @webgpu/types would clash), and

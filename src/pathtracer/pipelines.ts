@@ -117,6 +117,8 @@ async function computePipeline(device: GPUDevice, program: ProgramName, entryPoi
 
 async function createPipelines(device: GPUDevice, features: ShaderFeatures): Promise<PathTracerPipelines> {
   device.pushErrorScope('validation');
+  let pipelines: PathTracerPipelines | undefined;
+  let failure: unknown;
   try {
     const entries = await Promise.all(
       (Object.entries(wavefrontKernels) as [WavefrontKernelName, (typeof wavefrontKernels)[WavefrontKernelName]][]).map(
@@ -124,11 +126,15 @@ async function createPipelines(device: GPUDevice, features: ShaderFeatures): Pro
       ),
     );
     const resolve = await computePipeline(device, 'resolve', 'resolve_pixels', features);
-    return { kernels: Object.fromEntries(entries) as Record<WavefrontKernelName, KernelPipeline>, resolve };
-  } finally {
-    const error = await device.popErrorScope();
-    if (error) throw new GpuRendererError('GPU_VALIDATION_FAILED', `pipeline creation failed: ${error.message}`);
+    pipelines = { kernels: Object.fromEntries(entries) as Record<WavefrontKernelName, KernelPipeline>, resolve };
+  } catch (error) {
+    failure = error;
   }
+  // The scope is popped whatever happened, so a failed creation leaves the device's scopes balanced.
+  const validation = await device.popErrorScope();
+  if (failure !== undefined) throw failure;
+  if (validation) throw new GpuRendererError('GPU_VALIDATION_FAILED', `pipeline creation failed: ${validation.message}`);
+  return pipelines!;
 }
 
 /** The path tracer's pipelines for a feature set, created once per device and feature set. */
