@@ -1,10 +1,8 @@
 /** The `render` command: load a scene, path trace it in small increments with progress, write a PNG. */
-import { readFile } from 'node:fs/promises';
 import { createWavefrontPathTracingComputeRenderer } from '../pathtracer/index.ts';
 import type { WavefrontPathTracingRenderer } from '../pathtracer/types.ts';
 import { GpuRendererError } from '../errors/gpu-renderer-error.ts';
 import { createCornellBoxScene } from '../scene/cornell-box.ts';
-import { parseSceneFile } from '../scene/scene-file.ts';
 import type { WavefrontSceneDescription } from '../scene/types.ts';
 import { writePng } from '../post/png-node.ts';
 import { createProgressBar, type ProgressStream } from './progress.ts';
@@ -30,13 +28,11 @@ export async function loadScene(
     // Spreading keeps the renderer's scene keys only; the loader's metadata is non-enumerable.
     return { ...gltf };
   }
-  let text: string;
-  try {
-    text = await readFile(scenePath, 'utf8');
-  } catch (error) {
-    throw new GpuRendererError('INVALID_SCENE_FILE', `cannot read ${scenePath}: ${(error as Error).message}`, { field: 'scene', cause: error });
-  }
-  return parseSceneFile(text, scenePath);
+  // Scene JSON: its `uri` images are decoded and its `gltf` references loaded and merged.
+  const { loadSceneFile } = await import('../io/scene-file-loader.ts');
+  const file = await loadSceneFile(scenePath);
+  for (const warning of file.warnings) options.stderr?.write(`warning: ${warning}\n`);
+  return file.scene;
 }
 
 export async function runRenderCommand(command: RenderCommand, io: { stderr: ProgressStream } = { stderr: process.stderr }): Promise<RenderSummary> {

@@ -7,6 +7,7 @@
  */
 import { GpuRendererError } from '../errors/gpu-renderer-error.ts';
 import { describe } from '../errors/validate.ts';
+import { parseGltfReferences, type GltfSceneReference } from '../io/gltf/scene-file-references.ts';
 import type {
   WavefrontCameraInput,
   WavefrontEnvironmentInput,
@@ -23,6 +24,21 @@ import type {
 } from './types.ts';
 
 type Json = Record<string, unknown>;
+
+/** An image a scene file names by location (a path or URL relative to the file, or a data URI). */
+export interface WavefrontImageReference {
+  uri: string;
+}
+
+/**
+ * What a scene file holds: a scene description whose images may be given by `uri`, plus `gltf`
+ * references to glTF assets merged into the scene. `resolveSceneFile` / `loadSceneFile`
+ * (src/io/scene-file-loader.ts) turn it into a renderer-ready WavefrontSceneDescription.
+ */
+export interface WavefrontSceneFile extends Omit<WavefrontSceneDescription, 'images'> {
+  images?: (WavefrontImageInput | WavefrontImageReference)[];
+  gltf?: GltfSceneReference[];
+}
 
 class SceneFileReader {
   readonly path: string | undefined;
@@ -100,7 +116,7 @@ function pick<T>(src: Json, field: string, readers: { [K in keyof T]-?: (value: 
   return out as T;
 }
 
-const sceneKeys = ['camera', 'environment', 'meshes', 'instances', 'materials', 'textures', 'images', 'sceneObjects', 'lights'] as const;
+const sceneKeys = ['camera', 'environment', 'meshes', 'instances', 'materials', 'textures', 'images', 'sceneObjects', 'lights', 'gltf'] as const;
 const cameraKeys = ['type', 'position', 'target', 'up', 'fovYDegrees', 'orthographicHeight'] as const;
 const textureSlots = [
   'baseColorTexture', 'metallicRoughnessTexture', 'normalTexture', 'occlusionTexture', 'emissiveTexture', 'specularTexture', 'specularColorTexture',
@@ -122,7 +138,7 @@ const sceneObjectKeys = ['type', 'center', 'radius', 'min', 'max', 'color', 'emi
  * Parses and structurally validates a scene JSON file. `path` only labels error messages.
  * Throws `GpuRendererError` with code `INVALID_SCENE_FILE` and `field` set to the offending path.
  */
-export function parseSceneFile(jsonText: string, path?: string): WavefrontSceneDescription {
+export function parseSceneFile(jsonText: string, path?: string): WavefrontSceneFile {
   const r = new SceneFileReader(path);
   let root: unknown;
   try {
@@ -137,11 +153,11 @@ export function parseSceneFile(jsonText: string, path?: string): WavefrontSceneD
  * Validates an already-parsed scene object (what a scene JSON file holds) the same way; `path`
  * only labels error messages.
  */
-export function validateSceneDescription(value: unknown, path?: string): WavefrontSceneDescription {
+export function validateSceneDescription(value: unknown, path?: string): WavefrontSceneFile {
   return validate(value, new SceneFileReader(path));
 }
 
-function validate(value: unknown, r: SceneFileReader): WavefrontSceneDescription {
+function validate(value: unknown, r: SceneFileReader): WavefrontSceneFile {
   if (typeof value !== 'object' || value === null || Array.isArray(value)) r.fail(undefined, `a scene file holds a JSON object, got ${describe(value)}`);
   const root = r.object(value, '', sceneKeys);
 
@@ -233,8 +249,12 @@ function validate(value: unknown, r: SceneFileReader): WavefrontSceneDescription
     });
   };
 
-  const image = (v: unknown, f: string): WavefrontImageInput => {
-    const o = r.object(v, f, ['width', 'height', 'data']);
+  const image = (v: unknown, f: string): WavefrontImageInput | WavefrontImageReference => {
+    const o = r.object(v, f, ['width', 'height', 'data', 'uri']);
+    if (o.uri !== undefined) {
+      if (Object.keys(o).length > 1) r.fail(f, 'an image is either { uri } or { width, height, data }');
+      return { uri: r.string(o.uri, join(f, 'uri')) };
+    }
     for (const key of ['width', 'height', 'data'] as const) if (o[key] === undefined) r.fail(join(f, key), 'is required');
     return { width: r.integer(o.width, join(f, 'width'), 1), height: r.integer(o.height, join(f, 'height'), 1), data: Uint8Array.from(r.numbers(o.data, join(f, 'data'))) };
   };
@@ -287,7 +307,7 @@ function validate(value: unknown, r: SceneFileReader): WavefrontSceneDescription
 
   const list = <T>(item: (v: unknown, f: string) => T) => (v: unknown, f: string): T[] => r.array(v, f).map((x, i) => item(x, `${f}[${i}]`));
 
-  return pick<WavefrontSceneDescription>(root, '', {
+  return pick<WavefrontSceneFile>(root, '', {
     camera,
     environment,
     meshes: list(mesh),
@@ -298,5 +318,6 @@ function validate(value: unknown, r: SceneFileReader): WavefrontSceneDescription
     sceneObjects: list(sceneObject),
     // Lights are validated by the renderer, which names the field of any problem.
     lights: (x, g) => r.array(x, g) as never,
+    gltf: (x, g) => parseGltfReferences(x, g),
   });
 }

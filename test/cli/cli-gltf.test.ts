@@ -86,7 +86,7 @@ test('a bad glTF exits 1 naming the JSON pointer; an unknown variant names the o
   }
 });
 
-test('renders a generated .glb from its camera, with loader warnings on stderr', { todo: 'needs the renderer from the arch branch (instances, materials, textures)' }, async () => {
+test('renders a generated .glb from its camera, with loader warnings on stderr', async () => {
   const dir = await mkdtemp(join(tmpdir(), 'gpu-renderer-gltf-'));
   try {
     const model = join(dir, 'model.glb');

@@ -10,6 +10,7 @@ import { prepareScene } from '../../src/pathtracer/scene/prepare-scene.ts';
 import { createCornellBoxScene } from '../../src/scene/cornell-box.ts';
 import { normalizeWavefrontScene } from '../../src/scene/normalize-scene.ts';
 import { parseSceneFile } from '../../src/scene/scene-file.ts';
+import { resolveSceneFile } from '../../src/io/scene-file-loader.ts';
 import { rng } from '../helpers/random.ts';
 import { lightRecordLayout } from '../../src/gpu-layout/records.ts';
 import { fieldOf } from '../../src/gpu-layout/struct-layout.ts';
@@ -80,7 +81,7 @@ test('2000 mutated scene files give typed errors naming a field, or finite GPU d
     const edits = 1 + Math.floor(random() * 3);
     for (let e = 0; e < edits; e++) scene = mutate(scene, random);
     try {
-      const description = parseSceneFile(JSON.stringify(scene));
+      const { scene: description } = await resolveSceneFile(parseSceneFile(JSON.stringify(scene)));
       createWavefrontPathTracingComputeConfig({ width: 8, height: 8, ...description });
       const normalized = normalizeWavefrontScene(description);
       const p = await prepareScene(normalized, { maxTextureDimension2D: 64, maxTextureArrayLayers: 4 });

@@ -97,6 +97,6 @@ test('rejects wrong types, naming the field path', () => {
 test('errors without a path do not mention one', () => {
   assert.throws(
     () => parseSceneFile('{"x":1}'),
-    (e: unknown) => e instanceof GpuRendererError && e.message === 'x: unknown key "x" (expected one of camera, environment, meshes, instances, materials, textures, images, sceneObjects, lights)',
+    (e: unknown) => e instanceof GpuRendererError && e.message === 'x: unknown key "x" (expected one of camera, environment, meshes, instances, materials, textures, images, sceneObjects, lights, gltf)',
   );
 });
