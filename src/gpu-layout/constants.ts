@@ -111,6 +111,8 @@ export const PATH_FLAG_SPECULAR_BOUNCE = 1;
 export const SURFACE_FLAG_FRONT_FACE = 1;
 export const SURFACE_FLAG_DOUBLE_SIDED = 2;
 export const SURFACE_FLAG_ANALYTIC = 4;
+/** The record is an escaped ray (wo = -direction): the environment's radiance reaches it. */
+export const SURFACE_FLAG_ESCAPED = 8;
 
 export const TONE_MAPPING_NEUTRAL = 0;
 export const TONE_MAPPING_ACES = 1;
@@ -163,6 +165,7 @@ export const gpuConstants: Readonly<Record<string, number>> = Object.freeze({
   SURFACE_FLAG_FRONT_FACE,
   SURFACE_FLAG_DOUBLE_SIDED,
   SURFACE_FLAG_ANALYTIC,
+  SURFACE_FLAG_ESCAPED,
   TONE_MAPPING_NEUTRAL,
   TONE_MAPPING_ACES,
   TONE_MAPPING_LINEAR,

@@ -11,7 +11,7 @@ interface Offsets {
 
 /**
  * Encodes waves into a compute pass: per wave, camera rays, then per bounce (pbrt-v4's wavefront
- * stages) intersection -> escaped rays and material evaluation -> scatter -> shadow rays, all sized
+ * stages) intersection -> material evaluation -> scatter (escaped rays included) -> shadow rays, all sized
  * by one indirect dispatch whose arguments the GPU writes from the ray queue's length (each stage
  * stops at its own queue's length; one sizing kernel per bounce keeps the dispatch count, which a
  * CPU driver pays for in synchronisation, low), then the accumulation. `waves[i]` uses
@@ -45,7 +45,6 @@ export class WavefrontEncoder {
         const rays = { indirect: dispatchArgSlots.intersect };
         this.dispatch(pass, 'prepareIntersect', o, 1);
         this.dispatch(pass, 'intersect', o, rays);
-        this.dispatch(pass, 'escaped', o, rays);
         this.dispatch(pass, 'evaluateMaterials', o, rays);
         this.dispatch(pass, 'scatter', o, rays);
         if (d < maxDepth) this.dispatch(pass, 'shadow', o, rays);

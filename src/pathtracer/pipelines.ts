@@ -11,7 +11,6 @@ export const wavefrontKernels = {
   camera: { program: 'camera', entryPoint: 'generate_camera_rays' },
   prepareIntersect: { program: 'prepare', entryPoint: 'prepare_intersect' },
   intersect: { program: 'intersect', entryPoint: 'intersect_closest' },
-  escaped: { program: 'escaped', entryPoint: 'shade_escaped' },
   evaluateMaterials: { program: 'evaluateMaterials', entryPoint: 'evaluate_materials' },
   scatter: { program: 'scatter', entryPoint: 'scatter_paths' },
   shadow: { program: 'shadow', entryPoint: 'trace_shadow_rays' },
@@ -39,7 +38,7 @@ export interface PathTracerPipelines {
 
 const tables: Record<string, Record<string, BindingSpec>> = { pathTracer: pathTracerBindings, display: displayBindings };
 const programTable: Record<ProgramName, string> = {
-  camera: 'pathTracer', prepare: 'pathTracer', intersect: 'pathTracer', escaped: 'pathTracer', evaluateMaterials: 'pathTracer',
+  camera: 'pathTracer', prepare: 'pathTracer', intersect: 'pathTracer', evaluateMaterials: 'pathTracer',
   scatter: 'pathTracer', shadow: 'pathTracer', accumulate: 'pathTracer', resolve: 'display', present: 'display',
 };
 

@@ -15,7 +15,6 @@ export const programSpecs = {
   camera: { module: 'package::pathtracer::kernels::camera', bindings: 'pathTracer' },
   prepare: { module: 'package::pathtracer::kernels::prepare', bindings: 'pathTracer' },
   intersect: { module: 'package::pathtracer::kernels::intersect', bindings: 'pathTracer' },
-  escaped: { module: 'package::pathtracer::kernels::escaped', bindings: 'pathTracer' },
   evaluateMaterials: { module: 'package::pathtracer::kernels::evaluate_materials', bindings: 'pathTracer' },
   scatter: { module: 'package::pathtracer::kernels::scatter', bindings: 'pathTracer' },
   shadow: { module: 'package::pathtracer::kernels::shadow', bindings: 'pathTracer' },
