@@ -55,7 +55,7 @@ Options:
   --spp-per-frame <n>      samples per pixel per GPU frame (default ${renderDefaults.sppPerFrame})
   --max-depth <n>          scattering events per path, 1..32 (default ${renderDefaults.maxDepth})
   --seed <n>               sampler seed, 0..4294967295 (default ${renderDefaults.seed})
-  --tone-mapping <mode>    neutral | aces | linear (default ${renderDefaults.toneMapping})
+  --tone-mapping <mode>    neutral | aces | agx | linear (default ${renderDefaults.toneMapping})
   --exposure <x>           radiance multiplier before tone mapping (default ${renderDefaults.exposure})
   --out <file.png>         output image (default ${renderDefaults.out})
   --camera <name>          glTF: render from the camera (node or camera) of that name
@@ -140,7 +140,7 @@ export function parseRenderArgs(argv: readonly string[]): RenderCommand | HelpCo
         break;
       case '--tone-mapping': {
         const mode = take();
-        if (mode !== 'neutral' && mode !== 'aces' && mode !== 'linear') invalid(flag, `expected neutral, aces or linear, got ${JSON.stringify(mode)}`);
+        if (mode !== 'neutral' && mode !== 'aces' && mode !== 'agx' && mode !== 'linear') invalid(flag, `expected neutral, aces, agx or linear, got ${JSON.stringify(mode)}`);
         command.toneMapping = mode;
         break;
       }

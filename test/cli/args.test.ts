@@ -75,7 +75,7 @@ test('bad commands and flags are typed errors naming the flag', () => {
   rejects(['render', '--spp', '-4'], '--spp');
   rejects(['render', '--max-depth', '33'], '--max-depth', /between 1 and 32/);
   rejects(['render', '--seed', '4294967296'], '--seed');
-  rejects(['render', '--tone-mapping', 'filmic'], '--tone-mapping', /neutral, aces or linear/);
+  rejects(['render', '--tone-mapping', 'filmic'], '--tone-mapping', /neutral, aces, agx or linear/);
   rejects(['render', '--exposure', '0'], '--exposure', /> 0/);
   rejects(['render', '--exposure', 'Infinity'], '--exposure');
   rejects(['render', '--exposure='], '--exposure');
