@@ -1,0 +1,717 @@
+/**
+ * The binned-SAH BVH build kernels (Wald, "On fast construction of SAH-based bounding volume
+ * hierarchies", IEEE RT 2007), shared by the single-threaded, time-sliced and parallel builds.
+ *
+ * `createBvhKernels` is deliberately self-contained: it references nothing outside its own body but
+ * globals (Math, typed arrays, performance), because the parallel build ships its source text
+ * (`createBvhKernels.toString()`) into an inline Worker. Every build path therefore runs the very
+ * same code, and a parallel build produces the same tree, bit for bit, as the single-threaded one.
+ *
+ * Data layout (all flat typed arrays, no per-triangle objects):
+ * - per slot an AABB of 6 float32 (min xyz, max xyz) and a u32 triangle id;
+ * - two such buffers, "0" and "1": a node at depth d reads its slots from buffer (d & 1) and its
+ *   stable partition writes the children's slots into the other one (ping-pong). A stable
+ *   out-of-place partition reads and writes each slot once, sequentially, and splits across threads
+ *   deterministically (each thread knows from the bins where its part of each side starts);
+ * - leaves at odd depths copy their ids into buffer 0, which becomes `triangleOrder`.
+ * - nodes: 32-byte records (boundsMin vec3f, leftOrFirst u32, boundsMax vec3f, primitiveCount u32),
+ *   children of an interior node in a sibling pair at leftOrFirst, leftOrFirst + 1; pairs allocated
+ *   in depth-first order (left subtree first).
+ */
+
+/** Resolved build settings (see `BvhBuildOptions`). */
+export interface BvhBuildParams {
+  maxLeafSize: number;
+  binCount: number;
+  leafSizeCap: number;
+  maxDepth: number;
+}
+
+/** The two slot buffers (see the layout above); views may cover a sub-range of the whole. */
+export interface SlotBuffers {
+  boxes0: Float32Array;
+  ids0: Uint32Array;
+  boxes1: Float32Array;
+  ids1: Uint32Array;
+}
+
+/** One depth-first subtree build over slots [0, count) of the given views. */
+export interface SubtreeTask extends SlotBuffers {
+  count: number;
+  /** Global slot of local slot 0 (leaves store global slots). */
+  slotBase: number;
+  /** Depth of the subtree root in the whole tree (parity picks its buffer; the cap counts from 0). */
+  depth: number;
+  /** AABB (6) and doubled-centroid bounds (6) of the subtree's triangles. */
+  rootBounds: Float64Array;
+  /** Node records; local node 0 is the subtree root, its children start at local node 1. */
+  nodes: ArrayBuffer;
+  params: BvhBuildParams;
+}
+
+export interface SubtreeBuild {
+  /** Works until done or until `performance.now() >= deadline`; true when the subtree is complete. */
+  step(deadline: number): boolean;
+  nodeCount(): number;
+  leafCount(): number;
+  /** Deepest leaf, as a global depth. */
+  depthReached(): number;
+  /** Triangles already placed in leaves. */
+  placed(): number;
+}
+
+export type BvhKernels = ReturnType<typeof createBvhKernels>;
+
+export function createBvhKernels() {
+  const TRAVERSAL_COST = 1;
+  const INTERSECTION_COST = 1;
+  const LEAF = 0;
+  const MEDIAN = 1;
+  const SAH = 2;
+  /** Nodes of at least 2 * SAMPLE_SIZE triangles bin a strided sample of them (see processNode). */
+  const SAMPLE_SIZE = 8192;
+  const SAMPLE_BINS = 32;
+
+  function halfArea(minX: number, minY: number, minZ: number, maxX: number, maxY: number, maxZ: number): number {
+    const dx = maxX - minX;
+    const dy = maxY - minY;
+    const dz = maxZ - minZ;
+    return dx * dy + dy * dz + dz * dx;
+  }
+
+  /** Resets `out` (12: AABB then doubled-centroid bounds) to empty. */
+  function emptyBounds(out: Float64Array, at: number): void {
+    out[at] = out[at + 1] = out[at + 2] = Infinity;
+    out[at + 3] = out[at + 4] = out[at + 5] = -Infinity;
+    out[at + 6] = out[at + 7] = out[at + 8] = Infinity;
+    out[at + 9] = out[at + 10] = out[at + 11] = -Infinity;
+  }
+
+  /** Merges bounds `from` (12 at `fromAt`) into `into` (12 at `intoAt`). Min/max are exact, so merge order is irrelevant. */
+  function mergeBounds(into: Float64Array, intoAt: number, from: Float64Array, fromAt: number): void {
+    for (let c = 0; c < 12; c++) {
+      const v = from[fromAt + c]!;
+      if ((c % 6 < 3) ? v < into[intoAt + c]! : v > into[intoAt + c]!) into[intoAt + c] = v;
+    }
+  }
+
+  /**
+   * Triangle AABBs of triangles [from, to) into slots [from, to) of `boxes`/`ids`, and the union of
+   * their AABBs and doubled centroids into `out` (12 at `at`, merged with what is there).
+   */
+  function computeBoxes(positions: Float32Array, boxes: Float32Array, ids: Uint32Array, from: number, to: number, out: Float64Array, at: number): void {
+    let a0 = out[at]!, a1 = out[at + 1]!, a2 = out[at + 2]!, a3 = out[at + 3]!, a4 = out[at + 4]!, a5 = out[at + 5]!;
+    let c0 = out[at + 6]!, c1 = out[at + 7]!, c2 = out[at + 8]!, c3 = out[at + 9]!, c4 = out[at + 10]!, c5 = out[at + 11]!;
+    for (let t = from; t < to; t++) {
+      const p = t * 9;
+      const s = t * 6;
+      const ax = positions[p]!, ay = positions[p + 1]!, az = positions[p + 2]!;
+      const bx = positions[p + 3]!, by = positions[p + 4]!, bz = positions[p + 5]!;
+      const cx = positions[p + 6]!, cy = positions[p + 7]!, cz = positions[p + 8]!;
+      const x0 = ax < bx ? (ax < cx ? ax : cx) : bx < cx ? bx : cx;
+      const y0 = ay < by ? (ay < cy ? ay : cy) : by < cy ? by : cy;
+      const z0 = az < bz ? (az < cz ? az : cz) : bz < cz ? bz : cz;
+      const x1 = ax > bx ? (ax > cx ? ax : cx) : bx > cx ? bx : cx;
+      const y1 = ay > by ? (ay > cy ? ay : cy) : by > cy ? by : cy;
+      const z1 = az > bz ? (az > cz ? az : cz) : bz > cz ? bz : cz;
+      boxes[s] = x0;
+      boxes[s + 1] = y0;
+      boxes[s + 2] = z0;
+      boxes[s + 3] = x1;
+      boxes[s + 4] = y1;
+      boxes[s + 5] = z1;
+      ids[t] = t;
+      if (x0 < a0) a0 = x0;
+      if (y0 < a1) a1 = y0;
+      if (z0 < a2) a2 = z0;
+      if (x1 > a3) a3 = x1;
+      if (y1 > a4) a4 = y1;
+      if (z1 > a5) a5 = z1;
+      const mx = x0 + x1, my = y0 + y1, mz = z0 + z1;
+      if (mx < c0) c0 = mx;
+      if (my < c1) c1 = my;
+      if (mz < c2) c2 = mz;
+      if (mx > c3) c3 = mx;
+      if (my > c4) c4 = my;
+      if (mz > c5) c5 = mz;
+    }
+    out[at] = a0; out[at + 1] = a1; out[at + 2] = a2; out[at + 3] = a3; out[at + 4] = a4; out[at + 5] = a5;
+    out[at + 6] = c0; out[at + 7] = c1; out[at + 8] = c2; out[at + 9] = c3; out[at + 10] = c4; out[at + 11] = c5;
+  }
+
+  /** AABB and doubled-centroid bounds of slots [start, end) into `out` (12 at `at`), overwriting. */
+  function scanBounds(boxes: Float32Array, start: number, end: number, out: Float64Array, at: number): void {
+    let a0 = Infinity, a1 = Infinity, a2 = Infinity, a3 = -Infinity, a4 = -Infinity, a5 = -Infinity;
+    let c0 = Infinity, c1 = Infinity, c2 = Infinity, c3 = -Infinity, c4 = -Infinity, c5 = -Infinity;
+    for (let s = start * 6, e = end * 6; s < e; s += 6) {
+      const x0 = boxes[s]!, y0 = boxes[s + 1]!, z0 = boxes[s + 2]!, x1 = boxes[s + 3]!, y1 = boxes[s + 4]!, z1 = boxes[s + 5]!;
+      if (x0 < a0) a0 = x0;
+      if (y0 < a1) a1 = y0;
+      if (z0 < a2) a2 = z0;
+      if (x1 > a3) a3 = x1;
+      if (y1 > a4) a4 = y1;
+      if (z1 > a5) a5 = z1;
+      const mx = x0 + x1, my = y0 + y1, mz = z0 + z1;
+      if (mx < c0) c0 = mx;
+      if (my < c1) c1 = my;
+      if (mz < c2) c2 = mz;
+      if (mx > c3) c3 = mx;
+      if (my > c4) c4 = my;
+      if (mz > c5) c5 = mz;
+    }
+    out[at] = a0; out[at + 1] = a1; out[at + 2] = a2; out[at + 3] = a3; out[at + 4] = a4; out[at + 5] = a5;
+    out[at + 6] = c0; out[at + 7] = c1; out[at + 8] = c2; out[at + 9] = c3; out[at + 10] = c4; out[at + 11] = c5;
+  }
+
+  /**
+   * Bin scales of a node (into `scale`: k0, k1, k2, m0, m1, m2): bin(c) = floor(k * (c - m)) over the
+   * doubled-centroid bounds `cb` (6 at `at`); k = 0 marks an axis on which all centroids coincide.
+   */
+  function binScales(cb: Float64Array, at: number, bins: number, scale: Float64Array): void {
+    for (let a = 0; a < 3; a++) {
+      const lo = cb[at + a]!, hi = cb[at + 3 + a]!;
+      scale[a] = hi > lo ? (bins * (1 - 1e-9)) / (hi - lo) : 0;
+      scale[3 + a] = lo;
+    }
+  }
+
+  /** Empties `bins` bins per axis of the bin arrays (strided by `binCount` per axis). */
+  function resetBins(binN: Int32Array, binB: Float64Array, bins: number, binCount: number): void {
+    for (let a = 0; a < 3; a++) {
+      for (let b = 0; b < bins; b++) {
+        const q = a * binCount + b;
+        binN[q] = 0;
+        const r = q * 6;
+        binB[r] = Infinity; binB[r + 1] = Infinity; binB[r + 2] = Infinity;
+        binB[r + 3] = -Infinity; binB[r + 4] = -Infinity; binB[r + 5] = -Infinity;
+      }
+    }
+  }
+
+  /** Merges bins (counts add, boxes union); exact, so the merge of per-thread bins equals one pass. */
+  function mergeBins(intoN: Int32Array, intoB: Float64Array, fromN: Int32Array, fromB: Float64Array, bins: number, binCount: number): void {
+    for (let a = 0; a < 3; a++) {
+      for (let b = 0; b < bins; b++) {
+        const q = a * binCount + b;
+        intoN[q] = intoN[q]! + fromN[q]!;
+        const r = q * 6;
+        for (let c = 0; c < 3; c++) {
+          if (fromB[r + c]! < intoB[r + c]!) intoB[r + c] = fromB[r + c]!;
+          if (fromB[r + 3 + c]! > intoB[r + 3 + c]!) intoB[r + 3 + c] = fromB[r + 3 + c]!;
+        }
+      }
+    }
+  }
+
+  /**
+   * Adds every `stride`-th slot of [start, end) to the bins on all three axes in one pass (Wald 2007,
+   * sec. 3.2: centroid binning, each bin keeping a count and the AABB of its triangles).
+   */
+  function binRange(boxes: Float32Array, start: number, end: number, bins: number, binCount: number, scale: Float64Array, binN: Int32Array, binB: Float64Array, stride: number): void {
+    const k0 = scale[0]!, k1 = scale[1]!, k2 = scale[2]!, m0 = scale[3]!, m1 = scale[4]!, m2 = scale[5]!;
+    const last = bins - 1;
+    const base1 = binCount, base2 = 2 * binCount;
+    for (let s = start * 6, e = end * 6, st = stride * 6; s < e; s += st) {
+      const x0 = boxes[s]!, y0 = boxes[s + 1]!, z0 = boxes[s + 2]!, x1 = boxes[s + 3]!, y1 = boxes[s + 4]!, z1 = boxes[s + 5]!;
+      if (k0 !== 0) {
+        const f = k0 * ((x0 + x1) - m0);
+        const q = f >= last ? last : f > 0 ? f | 0 : 0;
+        binN[q]!++;
+        const r = q * 6;
+        if (x0 < binB[r]!) binB[r] = x0;
+        if (y0 < binB[r + 1]!) binB[r + 1] = y0;
+        if (z0 < binB[r + 2]!) binB[r + 2] = z0;
+        if (x1 > binB[r + 3]!) binB[r + 3] = x1;
+        if (y1 > binB[r + 4]!) binB[r + 4] = y1;
+        if (z1 > binB[r + 5]!) binB[r + 5] = z1;
+      }
+      if (k1 !== 0) {
+        const f = k1 * ((y0 + y1) - m1);
+        const q = base1 + (f >= last ? last : f > 0 ? f | 0 : 0);
+        binN[q]!++;
+        const r = q * 6;
+        if (x0 < binB[r]!) binB[r] = x0;
+        if (y0 < binB[r + 1]!) binB[r + 1] = y0;
+        if (z0 < binB[r + 2]!) binB[r + 2] = z0;
+        if (x1 > binB[r + 3]!) binB[r + 3] = x1;
+        if (y1 > binB[r + 4]!) binB[r + 4] = y1;
+        if (z1 > binB[r + 5]!) binB[r + 5] = z1;
+      }
+      if (k2 !== 0) {
+        const f = k2 * ((z0 + z1) - m2);
+        const q = base2 + (f >= last ? last : f > 0 ? f | 0 : 0);
+        binN[q]!++;
+        const r = q * 6;
+        if (x0 < binB[r]!) binB[r] = x0;
+        if (y0 < binB[r + 1]!) binB[r + 1] = y0;
+        if (z0 < binB[r + 2]!) binB[r + 2] = z0;
+        if (x1 > binB[r + 3]!) binB[r + 3] = x1;
+        if (y1 > binB[r + 4]!) binB[r + 4] = y1;
+        if (z1 > binB[r + 5]!) binB[r + 5] = z1;
+      }
+    }
+  }
+
+  /**
+   * Chooses what to do with a binned node at `depth` whose AABB is `box` (6 at `boxAt`) and which
+   * holds `count` triangles (the bins may hold a sample of them): returns LEAF, MEDIAN or SAH; for SAH
+   * `choice` gets [axis, plane, left count in the bins].
+   */
+  function decideSplit(
+    binN: Int32Array, binB: Float64Array, bins: number, binCount: number, scale: Float64Array,
+    box: Float64Array, boxAt: number, count: number, params: BvhBuildParams,
+    rightArea: Float64Array, rightN: Int32Array, choice: Int32Array,
+  ): number {
+    const parentArea = halfArea(box[boxAt]!, box[boxAt + 1]!, box[boxAt + 2]!, box[boxAt + 3]!, box[boxAt + 4]!, box[boxAt + 5]!);
+    let bestCost = Infinity;
+    let bestAxis = -1;
+    let bestPlane = 0;
+    let bestLeftN = 0;
+    let binned = 0;
+    // Sweep the bins-1 planes of each axis: suffix areas right to left, then prefix left to right.
+    for (let a = 0; a < 3; a++) {
+      if (scale[a] === 0) continue;
+      const base = a * binCount;
+      let r0 = Infinity, r1 = Infinity, r2 = Infinity, r3 = -Infinity, r4 = -Infinity, r5 = -Infinity;
+      let rn = 0;
+      for (let b = bins - 1; b >= 1; b--) {
+        const n = binN[base + b]!;
+        if (n > 0) {
+          const q = (base + b) * 6;
+          rn += n;
+          if (binB[q]! < r0) r0 = binB[q]!;
+          if (binB[q + 1]! < r1) r1 = binB[q + 1]!;
+          if (binB[q + 2]! < r2) r2 = binB[q + 2]!;
+          if (binB[q + 3]! > r3) r3 = binB[q + 3]!;
+          if (binB[q + 4]! > r4) r4 = binB[q + 4]!;
+          if (binB[q + 5]! > r5) r5 = binB[q + 5]!;
+        }
+        rightN[b] = rn;
+        rightArea[b] = rn > 0 ? halfArea(r0, r1, r2, r3, r4, r5) : 0;
+      }
+      binned = rn + binN[base]!;
+      let l0 = Infinity, l1 = Infinity, l2 = Infinity, l3 = -Infinity, l4 = -Infinity, l5 = -Infinity;
+      let ln = 0;
+      for (let b = 0; b < bins - 1; b++) {
+        const n = binN[base + b]!;
+        if (n > 0) {
+          const q = (base + b) * 6;
+          ln += n;
+          if (binB[q]! < l0) l0 = binB[q]!;
+          if (binB[q + 1]! < l1) l1 = binB[q + 1]!;
+          if (binB[q + 2]! < l2) l2 = binB[q + 2]!;
+          if (binB[q + 3]! > l3) l3 = binB[q + 3]!;
+          if (binB[q + 4]! > l4) l4 = binB[q + 4]!;
+          if (binB[q + 5]! > l5) l5 = binB[q + 5]!;
+        }
+        const rnb = rightN[b + 1]!;
+        if (ln === 0 || rnb === 0) continue;
+        // Costs are kept multiplied by the parent's area (no division, so zero-area nodes made of
+        // degenerate triangles compare without NaN): split = C_t A_P + C_i (A_L N_L + A_R N_R).
+        const cost = TRAVERSAL_COST * parentArea + INTERSECTION_COST * (halfArea(l0, l1, l2, l3, l4, l5) * ln + rightArea[b + 1]! * rnb);
+        if (cost < bestCost) {
+          bestCost = cost;
+          bestAxis = a;
+          bestPlane = b + 1;
+          bestLeftN = ln;
+        }
+      }
+    }
+    const mustSplit = count > params.leafSizeCap;
+    // No plane separates the centroids (all coincide, or one bin holds them all).
+    if (bestAxis < 0) return mustSplit ? MEDIAN : LEAF;
+    // A leaf (C_i N A_P, N as binned) is cheaper than any split: Wald 2007's termination criterion.
+    if (bestCost >= INTERSECTION_COST * binned * parentArea && !mustSplit) return LEAF;
+    choice[0] = bestAxis;
+    choice[1] = bestPlane;
+    choice[2] = bestLeftN;
+    return SAH;
+  }
+
+  /** AABBs of both sides of `plane` on `axis` as unions of their bins, into `childBounds` (left 6, right 6). */
+  function binUnion(binN: Int32Array, binB: Float64Array, bins: number, binCount: number, axis: number, plane: number, childBounds: Float64Array): void {
+    for (let c = 0; c < 3; c++) {
+      childBounds[c] = childBounds[6 + c] = Infinity;
+      childBounds[3 + c] = childBounds[9 + c] = -Infinity;
+    }
+    const base = axis * binCount;
+    for (let b = 0; b < bins; b++) {
+      if (binN[base + b] === 0) continue;
+      const t = b < plane ? 0 : 6;
+      const q = (base + b) * 6;
+      for (let c = 0; c < 3; c++) {
+        if (binB[q + c]! < childBounds[t + c]!) childBounds[t + c] = binB[q + c]!;
+        if (binB[q + 3 + c]! > childBounds[t + 3 + c]!) childBounds[t + 3 + c] = binB[q + 3 + c]!;
+      }
+    }
+  }
+
+  /**
+   * Depth budget: below a node at `depth` there are maxDepth - depth - 1 levels for its larger child;
+   * with median splits from there on, a child of N triangles reaches leaves of <= leafSizeCap only if
+   * N <= leafSizeCap * 2^levels. A very lopsided SAH split that breaks this is replaced by a median
+   * split, which keeps every leaf bounded however adversarial the input is.
+   */
+  function withinDepthBudget(count: number, leftCount: number, depth: number, params: BvhBuildParams): boolean {
+    const larger = leftCount > count - leftCount ? leftCount : count - leftCount;
+    return larger <= params.leafSizeCap * 2 ** (params.maxDepth - depth - 1);
+  }
+
+  /**
+   * Stable partition of slots [start, end) of (srcBoxes, srcIds) by bin(centroid on `axis`) < `plane`
+   * into (dstBoxes, dstIds): left slots from `leftAt` on, right slots from `rightAt` on, both in
+   * source order. The doubled-centroid bounds of both sides go to `cbOut` (left 6, right 6).
+   */
+  function partitionRange(
+    srcBoxes: Float32Array, srcIds: Uint32Array, dstBoxes: Float32Array, dstIds: Uint32Array,
+    start: number, end: number, axis: number, scale: Float64Array, bins: number, plane: number,
+    leftAt: number, rightAt: number, cbOut: Float64Array,
+  ): void {
+    const k = scale[axis]!, m = scale[3 + axis]!;
+    const last = bins - 1;
+    let l0 = Infinity, l1 = Infinity, l2 = Infinity, l3 = -Infinity, l4 = -Infinity, l5 = -Infinity;
+    let r0 = Infinity, r1 = Infinity, r2 = Infinity, r3 = -Infinity, r4 = -Infinity, r5 = -Infinity;
+    let li = leftAt;
+    let ri = rightAt;
+    for (let i = start; i < end; i++) {
+      const s = i * 6;
+      const x0 = srcBoxes[s]!, y0 = srcBoxes[s + 1]!, z0 = srcBoxes[s + 2]!, x1 = srcBoxes[s + 3]!, y1 = srcBoxes[s + 4]!, z1 = srcBoxes[s + 5]!;
+      const cx = x0 + x1, cy = y0 + y1, cz = z0 + z1;
+      // The same expression as in binRange, so every slot lands on the side its bin was counted on.
+      const f = k * ((axis === 0 ? cx : axis === 1 ? cy : cz) - m);
+      const b = f >= last ? last : f > 0 ? f | 0 : 0;
+      let d: number;
+      if (b < plane) {
+        if (cx < l0) l0 = cx;
+        if (cy < l1) l1 = cy;
+        if (cz < l2) l2 = cz;
+        if (cx > l3) l3 = cx;
+        if (cy > l4) l4 = cy;
+        if (cz > l5) l5 = cz;
+        d = li++;
+      } else {
+        if (cx < r0) r0 = cx;
+        if (cy < r1) r1 = cy;
+        if (cz < r2) r2 = cz;
+        if (cx > r3) r3 = cx;
+        if (cy > r4) r4 = cy;
+        if (cz > r5) r5 = cz;
+        d = ri++;
+      }
+      const o = d * 6;
+      dstBoxes[o] = x0;
+      dstBoxes[o + 1] = y0;
+      dstBoxes[o + 2] = z0;
+      dstBoxes[o + 3] = x1;
+      dstBoxes[o + 4] = y1;
+      dstBoxes[o + 5] = z1;
+      dstIds[d] = srcIds[i]!;
+    }
+    cbOut[0] = l0; cbOut[1] = l1; cbOut[2] = l2; cbOut[3] = l3; cbOut[4] = l4; cbOut[5] = l5;
+    cbOut[6] = r0; cbOut[7] = r1; cbOut[8] = r2; cbOut[9] = r3; cbOut[10] = r4; cbOut[11] = r5;
+  }
+
+  /**
+   * Partition for a split chosen from a sample, where neither side's size nor AABB is known yet: left
+   * slots go forward from `start`, right slots backward from `end - 1`, in one pass that also gathers
+   * both sides' AABBs and doubled-centroid bounds into `out` (left box, left cb, right box, right cb).
+   * Returns the first right slot.
+   */
+  function partitionSampled(
+    srcBoxes: Float32Array, srcIds: Uint32Array, dstBoxes: Float32Array, dstIds: Uint32Array,
+    start: number, end: number, axis: number, scale: Float64Array, bins: number, plane: number, out: Float64Array,
+  ): number {
+    const k = scale[axis]!, m = scale[3 + axis]!;
+    const last = bins - 1;
+    let la0 = Infinity, la1 = Infinity, la2 = Infinity, la3 = -Infinity, la4 = -Infinity, la5 = -Infinity;
+    let ra0 = Infinity, ra1 = Infinity, ra2 = Infinity, ra3 = -Infinity, ra4 = -Infinity, ra5 = -Infinity;
+    let lc0 = Infinity, lc1 = Infinity, lc2 = Infinity, lc3 = -Infinity, lc4 = -Infinity, lc5 = -Infinity;
+    let rc0 = Infinity, rc1 = Infinity, rc2 = Infinity, rc3 = -Infinity, rc4 = -Infinity, rc5 = -Infinity;
+    let li = start;
+    let ri = end - 1;
+    for (let i = start; i < end; i++) {
+      const s = i * 6;
+      const x0 = srcBoxes[s]!, y0 = srcBoxes[s + 1]!, z0 = srcBoxes[s + 2]!, x1 = srcBoxes[s + 3]!, y1 = srcBoxes[s + 4]!, z1 = srcBoxes[s + 5]!;
+      const cx = x0 + x1, cy = y0 + y1, cz = z0 + z1;
+      const f = k * ((axis === 0 ? cx : axis === 1 ? cy : cz) - m);
+      const b = f >= last ? last : f > 0 ? f | 0 : 0;
+      let d: number;
+      if (b < plane) {
+        if (x0 < la0) la0 = x0;
+        if (y0 < la1) la1 = y0;
+        if (z0 < la2) la2 = z0;
+        if (x1 > la3) la3 = x1;
+        if (y1 > la4) la4 = y1;
+        if (z1 > la5) la5 = z1;
+        if (cx < lc0) lc0 = cx;
+        if (cy < lc1) lc1 = cy;
+        if (cz < lc2) lc2 = cz;
+        if (cx > lc3) lc3 = cx;
+        if (cy > lc4) lc4 = cy;
+        if (cz > lc5) lc5 = cz;
+        d = li++;
+      } else {
+        if (x0 < ra0) ra0 = x0;
+        if (y0 < ra1) ra1 = y0;
+        if (z0 < ra2) ra2 = z0;
+        if (x1 > ra3) ra3 = x1;
+        if (y1 > ra4) ra4 = y1;
+        if (z1 > ra5) ra5 = z1;
+        if (cx < rc0) rc0 = cx;
+        if (cy < rc1) rc1 = cy;
+        if (cz < rc2) rc2 = cz;
+        if (cx > rc3) rc3 = cx;
+        if (cy > rc4) rc4 = cy;
+        if (cz > rc5) rc5 = cz;
+        d = ri--;
+      }
+      const o = d * 6;
+      dstBoxes[o] = x0;
+      dstBoxes[o + 1] = y0;
+      dstBoxes[o + 2] = z0;
+      dstBoxes[o + 3] = x1;
+      dstBoxes[o + 4] = y1;
+      dstBoxes[o + 5] = z1;
+      dstIds[d] = srcIds[i]!;
+    }
+    out[0] = la0; out[1] = la1; out[2] = la2; out[3] = la3; out[4] = la4; out[5] = la5;
+    out[6] = lc0; out[7] = lc1; out[8] = lc2; out[9] = lc3; out[10] = lc4; out[11] = lc5;
+    out[12] = ra0; out[13] = ra1; out[14] = ra2; out[15] = ra3; out[16] = ra4; out[17] = ra5;
+    out[18] = rc0; out[19] = rc1; out[20] = rc2; out[21] = rc3; out[22] = rc4; out[23] = rc5;
+    return li;
+  }
+
+  /**
+   * Object-median split along the widest centroid axis (index halves when all centroids coincide):
+   * Hoare quickselect in the source buffer, then the slots move to the destination buffer unchanged
+   * (unless both are the same).
+   */
+  function medianSplit(
+    srcBoxes: Float32Array, srcIds: Uint32Array, dstBoxes: Float32Array, dstIds: Uint32Array,
+    start: number, count: number, cb: Float64Array, cbAt: number,
+  ): number {
+    const end = start + count;
+    const mid = start + (count >>> 1);
+    const ex = cb[cbAt + 3]! - cb[cbAt]!, ey = cb[cbAt + 4]! - cb[cbAt + 1]!, ez = cb[cbAt + 5]! - cb[cbAt + 2]!;
+    if (ex > 0 || ey > 0 || ez > 0) {
+      const axis = ex >= ey && ex >= ez ? 0 : ey >= ez ? 1 : 2;
+      const key = (slot: number): number => srcBoxes[slot * 6 + axis]! + srcBoxes[slot * 6 + 3 + axis]!;
+      const swap = (i: number, j: number): void => {
+        const t = srcIds[i]!;
+        srcIds[i] = srcIds[j]!;
+        srcIds[j] = t;
+        for (let c = 0; c < 6; c++) {
+          const v = srcBoxes[i * 6 + c]!;
+          srcBoxes[i * 6 + c] = srcBoxes[j * 6 + c]!;
+          srcBoxes[j * 6 + c] = v;
+        }
+      };
+      let lo = start;
+      let hi = end - 1;
+      while (hi > lo) {
+        // Median of three as the pivot keeps sorted inputs (grids) from going quadratic.
+        const m = (lo + hi) >>> 1;
+        const a = key(lo), b = key(m), c = key(hi);
+        const pivot = a < b ? (b < c ? b : a < c ? c : a) : a < c ? a : b < c ? c : b;
+        let i = lo;
+        let j = hi;
+        while (i <= j) {
+          while (key(i) < pivot) i++;
+          while (key(j) > pivot) j--;
+          if (i <= j) {
+            swap(i, j);
+            i++;
+            j--;
+          }
+        }
+        if (mid <= j) hi = j;
+        else if (mid >= i) lo = i;
+        else break;
+      }
+    }
+    if (dstBoxes !== srcBoxes) {
+      dstBoxes.set(srcBoxes.subarray(start * 6, end * 6), start * 6);
+      dstIds.set(srcIds.subarray(start, end), start);
+    }
+    return mid;
+  }
+
+  /**
+   * The per-node step shared by every build path: decides a node's split and partitions its slots
+   * into the next buffer. `split` returns the first slot of the right child (children's AABBs and
+   * doubled-centroid bounds in `out`: left box, left cb, right box, right cb), or -1 for a leaf.
+   */
+  function createSplitter(params: BvhBuildParams) {
+    const { maxLeafSize, binCount, maxDepth, leafSizeCap } = params;
+    // Bin arrays hold the larger of the two bin counts per axis.
+    const binStride = binCount > SAMPLE_BINS ? binCount : SAMPLE_BINS;
+    const binN = new Int32Array(3 * binStride);
+    const binB = new Float64Array(3 * binStride * 6);
+    const rightArea = new Float64Array(binStride);
+    const rightN = new Int32Array(binStride);
+    const scale = new Float64Array(6);
+    const choice = new Int32Array(3);
+    const sides = new Float64Array(12);
+    const cbs = new Float64Array(12);
+
+    function split(
+      slots: SlotBuffers, start: number, count: number, depth: number,
+      box: Float64Array, boxAt: number, cb: Float64Array, cbAt: number, out: Float64Array,
+    ): number {
+      if (count <= maxLeafSize || depth >= maxDepth) return -1;
+      const odd = (depth & 1) === 1;
+      const srcBoxes = odd ? slots.boxes1 : slots.boxes0, srcIds = odd ? slots.ids1 : slots.ids0;
+      const dstBoxes = odd ? slots.boxes0 : slots.boxes1, dstIds = odd ? slots.ids0 : slots.ids1;
+      // Large nodes choose their plane from an evenly strided sample of SAMPLE_SIZE..2*SAMPLE_SIZE
+      // triangles in SAMPLE_BINS bins; the sample's bins hold real triangles of both sides, so the
+      // split is never empty. Smaller nodes bin every triangle, in at most one bin per triangle.
+      const stride = (count / SAMPLE_SIZE) | 0;
+      const sampled = stride >= 2;
+      const bins = sampled ? SAMPLE_BINS : count < binCount ? count : binCount;
+      binScales(cb, cbAt, bins, scale);
+      let decision = count > leafSizeCap ? MEDIAN : LEAF;
+      if (scale[0] !== 0 || scale[1] !== 0 || scale[2] !== 0) {
+        resetBins(binN, binB, bins, binStride);
+        binRange(srcBoxes, start, start + count, bins, binStride, scale, binN, binB, sampled ? stride : 1);
+        decision = decideSplit(binN, binB, bins, binStride, scale, box, boxAt, count, params, rightArea, rightN, choice);
+      }
+      if (decision === LEAF) return -1;
+      let mid: number;
+      if (decision === SAH && sampled) {
+        mid = partitionSampled(srcBoxes, srcIds, dstBoxes, dstIds, start, start + count, choice[0]!, scale, bins, choice[1]!, out);
+        if (withinDepthBudget(count, mid - start, depth, params)) return mid;
+        // Too lopsided for the depth left: median split of the (now partitioned) destination slots.
+        mid = medianSplit(dstBoxes, dstIds, dstBoxes, dstIds, start, count, cb, cbAt);
+      } else if (decision === SAH && withinDepthBudget(count, choice[2]!, depth, params)) {
+        mid = start + choice[2]!;
+        binUnion(binN, binB, bins, binStride, choice[0]!, choice[1]!, sides);
+        partitionRange(srcBoxes, srcIds, dstBoxes, dstIds, start, start + count, choice[0]!, scale, bins, choice[1]!, start, mid, cbs);
+        for (let c = 0; c < 6; c++) {
+          out[c] = sides[c]!;
+          out[6 + c] = cbs[c]!;
+          out[12 + c] = sides[6 + c]!;
+          out[18 + c] = cbs[6 + c]!;
+        }
+        return mid;
+      } else {
+        mid = medianSplit(srcBoxes, srcIds, dstBoxes, dstIds, start, count, cb, cbAt);
+      }
+      scanBounds(dstBoxes, start, mid, out, 0);
+      scanBounds(dstBoxes, mid, start + count, out, 12);
+      return mid;
+    }
+    return split;
+  }
+
+  /** triangleOrder is buffer 0; a leaf at an odd depth holds its ids in buffer 1 and copies them. */
+  function settleLeaf(slots: SlotBuffers, start: number, count: number, depth: number): void {
+    if (depth & 1) slots.ids0.set(slots.ids1.subarray(start, start + count), start);
+  }
+
+  /**
+   * Resumable depth-first build of one subtree (the whole tree for the single-threaded build). The
+   * work stack is explicit: each level pushes two entries and pops one, so maxDepth + 2 pairs suffice.
+   */
+  function createSubtreeBuild(task: SubtreeTask): SubtreeBuild {
+    const { count: total, slotBase, params } = task;
+    const split = createSplitter(params);
+    const nodeF = new Float32Array(task.nodes);
+    const nodeU = new Uint32Array(task.nodes);
+    const stackCap = 2 * (params.maxDepth + 2);
+    const stNode = new Int32Array(stackCap);
+    const stStart = new Int32Array(stackCap);
+    const stCount = new Int32Array(stackCap);
+    const stDepth = new Int32Array(stackCap);
+    const stCb = new Float64Array(stackCap * 6);
+    const out = new Float64Array(24);
+    const cb = new Float64Array(6);
+    const box = new Float64Array(6);
+    let nodeCount = 1;
+    let leafCount = 0;
+    let depthReached = task.depth;
+    let placed = 0;
+    let sp = 0;
+
+    const writeBox = (node: number, b: Float64Array, at: number): void => {
+      const o = node * 8;
+      nodeF[o] = b[at]!;
+      nodeF[o + 1] = b[at + 1]!;
+      nodeF[o + 2] = b[at + 2]!;
+      nodeF[o + 4] = b[at + 3]!;
+      nodeF[o + 5] = b[at + 4]!;
+      nodeF[o + 6] = b[at + 5]!;
+    };
+    const push = (node: number, start: number, count: number, depth: number, from: Float64Array, at: number): void => {
+      stNode[sp] = node;
+      stStart[sp] = start;
+      stCount[sp] = count;
+      stDepth[sp] = depth;
+      for (let c = 0; c < 6; c++) stCb[sp * 6 + c] = from[at + c]!;
+      sp++;
+    };
+
+    const processNode = (node: number, start: number, count: number, depth: number): void => {
+      const o = node * 8;
+      box[0] = nodeF[o]!; box[1] = nodeF[o + 1]!; box[2] = nodeF[o + 2]!;
+      box[3] = nodeF[o + 4]!; box[4] = nodeF[o + 5]!; box[5] = nodeF[o + 6]!;
+      const mid = split(task, start, count, depth, box, 0, cb, 0, out);
+      if (mid < 0) {
+        nodeU[node * 8 + 3] = slotBase + start;
+        nodeU[node * 8 + 7] = count;
+        settleLeaf(task, start, count, depth);
+        leafCount++;
+        placed += count;
+        if (depth > depthReached) depthReached = depth;
+        return;
+      }
+      const left = nodeCount;
+      nodeCount += 2;
+      nodeU[node * 8 + 3] = left;
+      nodeU[node * 8 + 7] = 0;
+      writeBox(left, out, 0);
+      writeBox(left + 1, out, 12);
+      // Right below left: the left subtree is finished first, so it is laid out first.
+      push(left + 1, mid, start + count - mid, depth + 1, out, 18);
+      push(left, start, mid - start, depth + 1, out, 6);
+    };
+
+    writeBox(0, task.rootBounds, 0);
+    if (total > 0) push(0, 0, total, task.depth, task.rootBounds, 6);
+
+    const step = (deadline: number): boolean => {
+      const timed = deadline !== Infinity;
+      let sinceCheck = 0;
+      while (sp > 0) {
+        sp--;
+        const node = stNode[sp]!;
+        const start = stStart[sp]!;
+        const count = stCount[sp]!;
+        const depth = stDepth[sp]!;
+        for (let c = 0; c < 6; c++) cb[c] = stCb[sp * 6 + c]!;
+        processNode(node, start, count, depth);
+        // Reading the clock costs more than a small node; check every few nodes or after big ones.
+        sinceCheck += count;
+        if (timed && sinceCheck >= 4096) {
+          sinceCheck = 0;
+          if (performance.now() >= deadline) return sp === 0;
+        }
+      }
+      return true;
+    };
+
+    return {
+      step,
+      nodeCount: () => nodeCount,
+      leafCount: () => leafCount,
+      depthReached: () => depthReached,
+      placed: () => placed,
+    };
+  }
+
+  return {
+    LEAF, MEDIAN, SAH,
+    emptyBounds, mergeBounds, computeBoxes, scanBounds, binScales, resetBins, mergeBins, binRange,
+    decideSplit, binUnion, withinDepthBudget, partitionSampled, partitionRange, medianSplit,
+    createSplitter, settleLeaf, createSubtreeBuild,
+  };
+}
