@@ -8,11 +8,14 @@
  * same code, and a parallel build produces the same tree, bit for bit, as the single-threaded one.
  *
  * Data layout (all flat typed arrays, no per-triangle objects):
- * - per slot an AABB of 6 float32 (min xyz, max xyz) and a u32 triangle id;
- * - two such buffers, "0" and "1": a node at depth d reads its slots from buffer (d & 1) and its
- *   stable partition writes the children's slots into the other one (ping-pong). A stable
- *   out-of-place partition reads and writes each slot once, sequentially, and splits across threads
- *   deterministically (each thread knows from the bins where its part of each side starts);
+ * - per slot 8 float32, two 4-vectors (min x, y, z, 0) and (max x, y, z, 0), and a u32 triangle id
+ *   in a separate array; the same layout as the WebAssembly SIMD loops (bvh-wasm.ts), which replace
+ *   binning, partitioning and scanning where WebAssembly runs;
+ * - centroids are doubled and rounded to float32 (Math.fround(min + max), as f32x4.add), so the JS
+ *   and WebAssembly loops put every triangle in the same bin and build the same tree, bit for bit;
+ * - two slot buffers, "0" and "1": a node at depth d reads its slots from buffer (d & 1) and its
+ *   partition writes the children's slots into the other one (ping-pong), reading and writing each
+ *   slot once, sequentially;
  * - leaves at odd depths copy their ids into buffer 0, which becomes `triangleOrder`.
  * - nodes: 32-byte records (boundsMin vec3f, leftOrFirst u32, boundsMax vec3f, primitiveCount u32),
  *   children of an interior node in a sibling pair at leftOrFirst, leftOrFirst + 1; pairs allocated
@@ -35,6 +38,20 @@ export interface SlotBuffers {
   ids1: Uint32Array;
 }
 
+/** The WebAssembly loops (bvh-wasm.ts) and where this thread may keep its bins (4 KiB, 16-aligned). */
+export interface BvhWasmBackend {
+  exports: {
+    bin(...args: number[]): void;
+    partition(...args: number[]): void;
+    partitionSampled(...args: number[]): number;
+    scan(p: number, end: number, out: number): void;
+    sweep(...args: number[]): void;
+  };
+  /** The instance's memory buffer; every slot buffer handed to the loops is a view of it. */
+  buffer: ArrayBufferLike;
+  scratch: number;
+}
+
 /** One depth-first subtree build over slots [0, count) of the given views. */
 export interface SubtreeTask extends SlotBuffers {
   count: number;
@@ -47,6 +64,8 @@ export interface SubtreeTask extends SlotBuffers {
   /** Node records; local node 0 is the subtree root, its children start at local node 1. */
   nodes: ArrayBuffer;
   params: BvhBuildParams;
+  /** The WebAssembly loops, when the slot buffers live in their memory. */
+  wasm?: BvhWasmBackend;
 }
 
 export interface SubtreeBuild {
@@ -104,7 +123,7 @@ export function createBvhKernels() {
     let c0 = out[at + 6]!, c1 = out[at + 7]!, c2 = out[at + 8]!, c3 = out[at + 9]!, c4 = out[at + 10]!, c5 = out[at + 11]!;
     for (let t = from; t < to; t++) {
       const p = t * 9;
-      const s = t * 6;
+      const s = t * 8;
       const ax = positions[p]!, ay = positions[p + 1]!, az = positions[p + 2]!;
       const bx = positions[p + 3]!, by = positions[p + 4]!, bz = positions[p + 5]!;
       const cx = positions[p + 6]!, cy = positions[p + 7]!, cz = positions[p + 8]!;
@@ -117,9 +136,11 @@ export function createBvhKernels() {
       boxes[s] = x0;
       boxes[s + 1] = y0;
       boxes[s + 2] = z0;
-      boxes[s + 3] = x1;
-      boxes[s + 4] = y1;
-      boxes[s + 5] = z1;
+      boxes[s + 3] = 0;
+      boxes[s + 4] = x1;
+      boxes[s + 5] = y1;
+      boxes[s + 6] = z1;
+      boxes[s + 7] = 0;
       ids[t] = t;
       if (x0 < a0) a0 = x0;
       if (y0 < a1) a1 = y0;
@@ -127,7 +148,7 @@ export function createBvhKernels() {
       if (x1 > a3) a3 = x1;
       if (y1 > a4) a4 = y1;
       if (z1 > a5) a5 = z1;
-      const mx = x0 + x1, my = y0 + y1, mz = z0 + z1;
+      const mx = Math.fround(x0 + x1), my = Math.fround(y0 + y1), mz = Math.fround(z0 + z1);
       if (mx < c0) c0 = mx;
       if (my < c1) c1 = my;
       if (mz < c2) c2 = mz;
@@ -143,15 +164,15 @@ export function createBvhKernels() {
   function scanBounds(boxes: Float32Array, start: number, end: number, out: Float64Array, at: number): void {
     let a0 = Infinity, a1 = Infinity, a2 = Infinity, a3 = -Infinity, a4 = -Infinity, a5 = -Infinity;
     let c0 = Infinity, c1 = Infinity, c2 = Infinity, c3 = -Infinity, c4 = -Infinity, c5 = -Infinity;
-    for (let s = start * 6, e = end * 6; s < e; s += 6) {
-      const x0 = boxes[s]!, y0 = boxes[s + 1]!, z0 = boxes[s + 2]!, x1 = boxes[s + 3]!, y1 = boxes[s + 4]!, z1 = boxes[s + 5]!;
+    for (let s = start * 8, e = end * 8; s < e; s += 8) {
+      const x0 = boxes[s]!, y0 = boxes[s + 1]!, z0 = boxes[s + 2]!, x1 = boxes[s + 4]!, y1 = boxes[s + 5]!, z1 = boxes[s + 6]!;
       if (x0 < a0) a0 = x0;
       if (y0 < a1) a1 = y0;
       if (z0 < a2) a2 = z0;
       if (x1 > a3) a3 = x1;
       if (y1 > a4) a4 = y1;
       if (z1 > a5) a5 = z1;
-      const mx = x0 + x1, my = y0 + y1, mz = z0 + z1;
+      const mx = Math.fround(x0 + x1), my = Math.fround(y0 + y1), mz = Math.fround(z0 + z1);
       if (mx < c0) c0 = mx;
       if (my < c1) c1 = my;
       if (mz < c2) c2 = mz;
@@ -175,30 +196,15 @@ export function createBvhKernels() {
     }
   }
 
-  /** Empties `bins` bins per axis of the bin arrays (strided by `binCount` per axis). */
-  function resetBins(binN: Int32Array, binB: Float64Array, bins: number, binCount: number): void {
+  /** Empties `bins` bins per axis (bin records of 8 float32: min vector, max vector; `binStride` per axis). */
+  function resetBins(binN: Int32Array, binB: Float32Array, bins: number, binStride: number): void {
     for (let a = 0; a < 3; a++) {
       for (let b = 0; b < bins; b++) {
-        const q = a * binCount + b;
+        const q = a * binStride + b;
         binN[q] = 0;
-        const r = q * 6;
+        const r = q * 8;
         binB[r] = Infinity; binB[r + 1] = Infinity; binB[r + 2] = Infinity;
-        binB[r + 3] = -Infinity; binB[r + 4] = -Infinity; binB[r + 5] = -Infinity;
-      }
-    }
-  }
-
-  /** Merges bins (counts add, boxes union); exact, so the merge of per-thread bins equals one pass. */
-  function mergeBins(intoN: Int32Array, intoB: Float64Array, fromN: Int32Array, fromB: Float64Array, bins: number, binCount: number): void {
-    for (let a = 0; a < 3; a++) {
-      for (let b = 0; b < bins; b++) {
-        const q = a * binCount + b;
-        intoN[q] = intoN[q]! + fromN[q]!;
-        const r = q * 6;
-        for (let c = 0; c < 3; c++) {
-          if (fromB[r + c]! < intoB[r + c]!) intoB[r + c] = fromB[r + c]!;
-          if (fromB[r + 3 + c]! > intoB[r + 3 + c]!) intoB[r + 3 + c] = fromB[r + 3 + c]!;
-        }
+        binB[r + 4] = -Infinity; binB[r + 5] = -Infinity; binB[r + 6] = -Infinity;
       }
     }
   }
@@ -207,62 +213,60 @@ export function createBvhKernels() {
    * Adds every `stride`-th slot of [start, end) to the bins on all three axes in one pass (Wald 2007,
    * sec. 3.2: centroid binning, each bin keeping a count and the AABB of its triangles).
    */
-  function binRange(boxes: Float32Array, start: number, end: number, bins: number, binCount: number, scale: Float64Array, binN: Int32Array, binB: Float64Array, stride: number): void {
+  function binRange(boxes: Float32Array, start: number, end: number, stride: number, scale: Float64Array, bins: number, binStride: number, binN: Int32Array, binB: Float32Array): void {
     const k0 = scale[0]!, k1 = scale[1]!, k2 = scale[2]!, m0 = scale[3]!, m1 = scale[4]!, m2 = scale[5]!;
     const last = bins - 1;
-    const base1 = binCount, base2 = 2 * binCount;
-    for (let s = start * 6, e = end * 6, st = stride * 6; s < e; s += st) {
-      const x0 = boxes[s]!, y0 = boxes[s + 1]!, z0 = boxes[s + 2]!, x1 = boxes[s + 3]!, y1 = boxes[s + 4]!, z1 = boxes[s + 5]!;
+    const base1 = binStride, base2 = 2 * binStride;
+    for (let s = start * 8, e = end * 8, st = stride * 8; s < e; s += st) {
+      const x0 = boxes[s]!, y0 = boxes[s + 1]!, z0 = boxes[s + 2]!, x1 = boxes[s + 4]!, y1 = boxes[s + 5]!, z1 = boxes[s + 6]!;
       if (k0 !== 0) {
-        const f = k0 * ((x0 + x1) - m0);
+        const f = k0 * (Math.fround(x0 + x1) - m0);
         const q = f >= last ? last : f > 0 ? f | 0 : 0;
         binN[q]!++;
-        const r = q * 6;
+        const r = q * 8;
         if (x0 < binB[r]!) binB[r] = x0;
         if (y0 < binB[r + 1]!) binB[r + 1] = y0;
         if (z0 < binB[r + 2]!) binB[r + 2] = z0;
-        if (x1 > binB[r + 3]!) binB[r + 3] = x1;
-        if (y1 > binB[r + 4]!) binB[r + 4] = y1;
-        if (z1 > binB[r + 5]!) binB[r + 5] = z1;
+        if (x1 > binB[r + 4]!) binB[r + 4] = x1;
+        if (y1 > binB[r + 5]!) binB[r + 5] = y1;
+        if (z1 > binB[r + 6]!) binB[r + 6] = z1;
       }
       if (k1 !== 0) {
-        const f = k1 * ((y0 + y1) - m1);
+        const f = k1 * (Math.fround(y0 + y1) - m1);
         const q = base1 + (f >= last ? last : f > 0 ? f | 0 : 0);
         binN[q]!++;
-        const r = q * 6;
+        const r = q * 8;
         if (x0 < binB[r]!) binB[r] = x0;
         if (y0 < binB[r + 1]!) binB[r + 1] = y0;
         if (z0 < binB[r + 2]!) binB[r + 2] = z0;
-        if (x1 > binB[r + 3]!) binB[r + 3] = x1;
-        if (y1 > binB[r + 4]!) binB[r + 4] = y1;
-        if (z1 > binB[r + 5]!) binB[r + 5] = z1;
+        if (x1 > binB[r + 4]!) binB[r + 4] = x1;
+        if (y1 > binB[r + 5]!) binB[r + 5] = y1;
+        if (z1 > binB[r + 6]!) binB[r + 6] = z1;
       }
       if (k2 !== 0) {
-        const f = k2 * ((z0 + z1) - m2);
+        const f = k2 * (Math.fround(z0 + z1) - m2);
         const q = base2 + (f >= last ? last : f > 0 ? f | 0 : 0);
         binN[q]!++;
-        const r = q * 6;
+        const r = q * 8;
         if (x0 < binB[r]!) binB[r] = x0;
         if (y0 < binB[r + 1]!) binB[r + 1] = y0;
         if (z0 < binB[r + 2]!) binB[r + 2] = z0;
-        if (x1 > binB[r + 3]!) binB[r + 3] = x1;
-        if (y1 > binB[r + 4]!) binB[r + 4] = y1;
-        if (z1 > binB[r + 5]!) binB[r + 5] = z1;
+        if (x1 > binB[r + 4]!) binB[r + 4] = x1;
+        if (y1 > binB[r + 5]!) binB[r + 5] = y1;
+        if (z1 > binB[r + 6]!) binB[r + 6] = z1;
       }
     }
   }
 
   /**
-   * Chooses what to do with a binned node at `depth` whose AABB is `box` (6 at `boxAt`) and which
-   * holds `count` triangles (the bins may hold a sample of them): returns LEAF, MEDIAN or SAH; for SAH
-   * `choice` gets [axis, plane, left count in the bins].
+   * The SAH plane search over the bins of the axes with a non-zero scale (Wald 2007, sec. 3.3):
+   * into `result` [best cost (times the parent's half area), axis (-1: none), plane, left count,
+   * binned count]. The WebAssembly `sweep` computes the same, in the same order.
    */
-  function decideSplit(
-    binN: Int32Array, binB: Float64Array, bins: number, binCount: number, scale: Float64Array,
-    box: Float64Array, boxAt: number, count: number, params: BvhBuildParams,
-    rightArea: Float64Array, rightN: Int32Array, choice: Int32Array,
-  ): number {
-    const parentArea = halfArea(box[boxAt]!, box[boxAt + 1]!, box[boxAt + 2]!, box[boxAt + 3]!, box[boxAt + 4]!, box[boxAt + 5]!);
+  function sweepBins(
+    binN: Int32Array, binB: Float32Array, bins: number, binStride: number, scale: Float64Array, parentArea: number,
+    rightArea: Float64Array, rightN: Int32Array, result: Float64Array,
+  ): void {
     let bestCost = Infinity;
     let bestAxis = -1;
     let bestPlane = 0;
@@ -271,20 +275,20 @@ export function createBvhKernels() {
     // Sweep the bins-1 planes of each axis: suffix areas right to left, then prefix left to right.
     for (let a = 0; a < 3; a++) {
       if (scale[a] === 0) continue;
-      const base = a * binCount;
+      const base = a * binStride;
       let r0 = Infinity, r1 = Infinity, r2 = Infinity, r3 = -Infinity, r4 = -Infinity, r5 = -Infinity;
       let rn = 0;
       for (let b = bins - 1; b >= 1; b--) {
         const n = binN[base + b]!;
         if (n > 0) {
-          const q = (base + b) * 6;
+          const q = (base + b) * 8;
           rn += n;
           if (binB[q]! < r0) r0 = binB[q]!;
           if (binB[q + 1]! < r1) r1 = binB[q + 1]!;
           if (binB[q + 2]! < r2) r2 = binB[q + 2]!;
-          if (binB[q + 3]! > r3) r3 = binB[q + 3]!;
-          if (binB[q + 4]! > r4) r4 = binB[q + 4]!;
-          if (binB[q + 5]! > r5) r5 = binB[q + 5]!;
+          if (binB[q + 4]! > r3) r3 = binB[q + 4]!;
+          if (binB[q + 5]! > r4) r4 = binB[q + 5]!;
+          if (binB[q + 6]! > r5) r5 = binB[q + 6]!;
         }
         rightN[b] = rn;
         rightArea[b] = rn > 0 ? halfArea(r0, r1, r2, r3, r4, r5) : 0;
@@ -295,14 +299,14 @@ export function createBvhKernels() {
       for (let b = 0; b < bins - 1; b++) {
         const n = binN[base + b]!;
         if (n > 0) {
-          const q = (base + b) * 6;
+          const q = (base + b) * 8;
           ln += n;
           if (binB[q]! < l0) l0 = binB[q]!;
           if (binB[q + 1]! < l1) l1 = binB[q + 1]!;
           if (binB[q + 2]! < l2) l2 = binB[q + 2]!;
-          if (binB[q + 3]! > l3) l3 = binB[q + 3]!;
-          if (binB[q + 4]! > l4) l4 = binB[q + 4]!;
-          if (binB[q + 5]! > l5) l5 = binB[q + 5]!;
+          if (binB[q + 4]! > l3) l3 = binB[q + 4]!;
+          if (binB[q + 5]! > l4) l4 = binB[q + 5]!;
+          if (binB[q + 6]! > l5) l5 = binB[q + 6]!;
         }
         const rnb = rightN[b + 1]!;
         if (ln === 0 || rnb === 0) continue;
@@ -317,31 +321,44 @@ export function createBvhKernels() {
         }
       }
     }
+    result[0] = bestCost;
+    result[1] = bestAxis;
+    result[2] = bestPlane;
+    result[3] = bestLeftN;
+    result[4] = binned;
+  }
+
+  /**
+   * Chooses what to do with a swept node of `count` triangles (the bins may hold a sample of them):
+   * returns LEAF, MEDIAN or SAH; for SAH `choice` gets [axis, plane, left count in the bins].
+   */
+  function decideSplit(result: Float64Array, parentArea: number, count: number, params: BvhBuildParams, choice: Int32Array): number {
+    const bestCost = result[0]!, bestAxis = result[1]!, binned = result[4]!;
     const mustSplit = count > params.leafSizeCap;
     // No plane separates the centroids (all coincide, or one bin holds them all).
     if (bestAxis < 0) return mustSplit ? MEDIAN : LEAF;
     // A leaf (C_i N A_P, N as binned) is cheaper than any split: Wald 2007's termination criterion.
     if (bestCost >= INTERSECTION_COST * binned * parentArea && !mustSplit) return LEAF;
     choice[0] = bestAxis;
-    choice[1] = bestPlane;
-    choice[2] = bestLeftN;
+    choice[1] = result[2]!;
+    choice[2] = result[3]!;
     return SAH;
   }
 
   /** AABBs of both sides of `plane` on `axis` as unions of their bins, into `childBounds` (left 6, right 6). */
-  function binUnion(binN: Int32Array, binB: Float64Array, bins: number, binCount: number, axis: number, plane: number, childBounds: Float64Array): void {
+  function binUnion(binN: Int32Array, binB: Float32Array, bins: number, binStride: number, axis: number, plane: number, childBounds: Float64Array): void {
     for (let c = 0; c < 3; c++) {
       childBounds[c] = childBounds[6 + c] = Infinity;
       childBounds[3 + c] = childBounds[9 + c] = -Infinity;
     }
-    const base = axis * binCount;
+    const base = axis * binStride;
     for (let b = 0; b < bins; b++) {
       if (binN[base + b] === 0) continue;
       const t = b < plane ? 0 : 6;
-      const q = (base + b) * 6;
+      const q = (base + b) * 8;
       for (let c = 0; c < 3; c++) {
         if (binB[q + c]! < childBounds[t + c]!) childBounds[t + c] = binB[q + c]!;
-        if (binB[q + 3 + c]! > childBounds[t + 3 + c]!) childBounds[t + 3 + c] = binB[q + 3 + c]!;
+        if (binB[q + 4 + c]! > childBounds[t + 3 + c]!) childBounds[t + 3 + c] = binB[q + 4 + c]!;
       }
     }
   }
@@ -374,9 +391,9 @@ export function createBvhKernels() {
     let li = leftAt;
     let ri = rightAt;
     for (let i = start; i < end; i++) {
-      const s = i * 6;
-      const x0 = srcBoxes[s]!, y0 = srcBoxes[s + 1]!, z0 = srcBoxes[s + 2]!, x1 = srcBoxes[s + 3]!, y1 = srcBoxes[s + 4]!, z1 = srcBoxes[s + 5]!;
-      const cx = x0 + x1, cy = y0 + y1, cz = z0 + z1;
+      const s = i * 8;
+      const x0 = srcBoxes[s]!, y0 = srcBoxes[s + 1]!, z0 = srcBoxes[s + 2]!, x1 = srcBoxes[s + 4]!, y1 = srcBoxes[s + 5]!, z1 = srcBoxes[s + 6]!;
+      const cx = Math.fround(x0 + x1), cy = Math.fround(y0 + y1), cz = Math.fround(z0 + z1);
       // The same expression as in binRange, so every slot lands on the side its bin was counted on.
       const f = k * ((axis === 0 ? cx : axis === 1 ? cy : cz) - m);
       const b = f >= last ? last : f > 0 ? f | 0 : 0;
@@ -398,13 +415,15 @@ export function createBvhKernels() {
         if (cz > r5) r5 = cz;
         d = ri++;
       }
-      const o = d * 6;
+      const o = d * 8;
       dstBoxes[o] = x0;
       dstBoxes[o + 1] = y0;
       dstBoxes[o + 2] = z0;
-      dstBoxes[o + 3] = x1;
-      dstBoxes[o + 4] = y1;
-      dstBoxes[o + 5] = z1;
+      dstBoxes[o + 3] = 0;
+      dstBoxes[o + 4] = x1;
+      dstBoxes[o + 5] = y1;
+      dstBoxes[o + 6] = z1;
+      dstBoxes[o + 7] = 0;
       dstIds[d] = srcIds[i]!;
     }
     cbOut[0] = l0; cbOut[1] = l1; cbOut[2] = l2; cbOut[3] = l3; cbOut[4] = l4; cbOut[5] = l5;
@@ -430,9 +449,9 @@ export function createBvhKernels() {
     let li = start;
     let ri = end - 1;
     for (let i = start; i < end; i++) {
-      const s = i * 6;
-      const x0 = srcBoxes[s]!, y0 = srcBoxes[s + 1]!, z0 = srcBoxes[s + 2]!, x1 = srcBoxes[s + 3]!, y1 = srcBoxes[s + 4]!, z1 = srcBoxes[s + 5]!;
-      const cx = x0 + x1, cy = y0 + y1, cz = z0 + z1;
+      const s = i * 8;
+      const x0 = srcBoxes[s]!, y0 = srcBoxes[s + 1]!, z0 = srcBoxes[s + 2]!, x1 = srcBoxes[s + 4]!, y1 = srcBoxes[s + 5]!, z1 = srcBoxes[s + 6]!;
+      const cx = Math.fround(x0 + x1), cy = Math.fround(y0 + y1), cz = Math.fround(z0 + z1);
       const f = k * ((axis === 0 ? cx : axis === 1 ? cy : cz) - m);
       const b = f >= last ? last : f > 0 ? f | 0 : 0;
       let d: number;
@@ -465,13 +484,15 @@ export function createBvhKernels() {
         if (cz > rc5) rc5 = cz;
         d = ri--;
       }
-      const o = d * 6;
+      const o = d * 8;
       dstBoxes[o] = x0;
       dstBoxes[o + 1] = y0;
       dstBoxes[o + 2] = z0;
-      dstBoxes[o + 3] = x1;
-      dstBoxes[o + 4] = y1;
-      dstBoxes[o + 5] = z1;
+      dstBoxes[o + 3] = 0;
+      dstBoxes[o + 4] = x1;
+      dstBoxes[o + 5] = y1;
+      dstBoxes[o + 6] = z1;
+      dstBoxes[o + 7] = 0;
       dstIds[d] = srcIds[i]!;
     }
     out[0] = la0; out[1] = la1; out[2] = la2; out[3] = la3; out[4] = la4; out[5] = la5;
@@ -495,15 +516,15 @@ export function createBvhKernels() {
     const ex = cb[cbAt + 3]! - cb[cbAt]!, ey = cb[cbAt + 4]! - cb[cbAt + 1]!, ez = cb[cbAt + 5]! - cb[cbAt + 2]!;
     if (ex > 0 || ey > 0 || ez > 0) {
       const axis = ex >= ey && ex >= ez ? 0 : ey >= ez ? 1 : 2;
-      const key = (slot: number): number => srcBoxes[slot * 6 + axis]! + srcBoxes[slot * 6 + 3 + axis]!;
+      const key = (slot: number): number => Math.fround(srcBoxes[slot * 8 + axis]! + srcBoxes[slot * 8 + 4 + axis]!);
       const swap = (i: number, j: number): void => {
         const t = srcIds[i]!;
         srcIds[i] = srcIds[j]!;
         srcIds[j] = t;
-        for (let c = 0; c < 6; c++) {
-          const v = srcBoxes[i * 6 + c]!;
-          srcBoxes[i * 6 + c] = srcBoxes[j * 6 + c]!;
-          srcBoxes[j * 6 + c] = v;
+        for (let c = 0; c < 8; c++) {
+          const v = srcBoxes[i * 8 + c]!;
+          srcBoxes[i * 8 + c] = srcBoxes[j * 8 + c]!;
+          srcBoxes[j * 8 + c] = v;
         }
       };
       let lo = start;
@@ -530,7 +551,7 @@ export function createBvhKernels() {
       }
     }
     if (dstBoxes !== srcBoxes) {
-      dstBoxes.set(srcBoxes.subarray(start * 6, end * 6), start * 6);
+      dstBoxes.set(srcBoxes.subarray(start * 8, end * 8), start * 8);
       dstIds.set(srcIds.subarray(start, end), start);
     }
     return mid;
@@ -540,19 +561,44 @@ export function createBvhKernels() {
    * The per-node step shared by every build path: decides a node's split and partitions its slots
    * into the next buffer. `split` returns the first slot of the right child (children's AABBs and
    * doubled-centroid bounds in `out`: left box, left cb, right box, right cb), or -1 for a leaf.
+   * With `wasm`, binning, partitioning and scans run in WebAssembly (same results).
    */
-  function createSplitter(params: BvhBuildParams) {
+  function createSplitter(params: BvhBuildParams, wasm?: BvhWasmBackend) {
     const { maxLeafSize, binCount, maxDepth, leafSizeCap } = params;
     // Bin arrays hold the larger of the two bin counts per axis.
     const binStride = binCount > SAMPLE_BINS ? binCount : SAMPLE_BINS;
-    const binN = new Int32Array(3 * binStride);
-    const binB = new Float64Array(3 * binStride * 6);
+    // In WebAssembly memory the bins sit in this thread's scratch: records, then counts, then 8 vectors of results.
+    const binBytes = 3 * binStride * 32;
+    const cntBytes = 3 * binStride * 4;
+    if (wasm && wasm.scratch % 16 !== 0) throw new RangeError('bvh: WebAssembly scratch must be 16-byte aligned');
+    const binB = wasm ? new Float32Array(wasm.buffer, wasm.scratch, 3 * binStride * 8) : new Float32Array(3 * binStride * 8);
+    const binN = wasm ? new Int32Array(wasm.buffer, wasm.scratch + binBytes, 3 * binStride) : new Int32Array(3 * binStride);
+    const results = wasm ? new Float32Array(wasm.buffer, wasm.scratch + binBytes + cntBytes, 32) : new Float32Array(32);
+    const resultsAt = wasm ? wasm.scratch + binBytes + cntBytes : 0;
+    // The WebAssembly sweep's result (f64 cost, then i32 axis, plane, left count, binned) and its suffix arrays.
+    const sweepAt = resultsAt + 128;
+    const sweepCost = wasm ? new Float64Array(wasm.buffer, sweepAt, 1) : new Float64Array(1);
+    const sweepInts = wasm ? new Int32Array(wasm.buffer, sweepAt + 8, 4) : new Int32Array(4);
+    const sweepTmp = sweepAt + 32;
+    const swept = new Float64Array(5);
     const rightArea = new Float64Array(binStride);
     const rightN = new Int32Array(binStride);
     const scale = new Float64Array(6);
     const choice = new Int32Array(3);
     const sides = new Float64Array(12);
     const cbs = new Float64Array(12);
+
+    /** Vectors (min, max) at results[4v..] into out[at..at+6). */
+    const readVectors = (v: number, out: Float64Array, at: number): void => {
+      out[at] = results[v * 4]!; out[at + 1] = results[v * 4 + 1]!; out[at + 2] = results[v * 4 + 2]!;
+      out[at + 3] = results[v * 4 + 4]!; out[at + 4] = results[v * 4 + 5]!; out[at + 5] = results[v * 4 + 6]!;
+    };
+    const scan = (boxes: Float32Array, start: number, end: number, out: Float64Array, at: number): void => {
+      if (!wasm) return scanBounds(boxes, start, end, out, at);
+      wasm.exports.scan(boxes.byteOffset + start * 32, boxes.byteOffset + end * 32, resultsAt);
+      readVectors(0, out, at);
+      readVectors(2, out, at + 6);
+    };
 
     function split(
       slots: SlotBuffers, start: number, count: number, depth: number,
@@ -567,25 +613,69 @@ export function createBvhKernels() {
       // split is never empty. Smaller nodes bin every triangle, in at most one bin per triangle.
       const stride = (count / SAMPLE_SIZE) | 0;
       const sampled = stride >= 2;
+      const step = sampled ? stride : 1;
       const bins = sampled ? SAMPLE_BINS : count < binCount ? count : binCount;
       binScales(cb, cbAt, bins, scale);
       let decision = count > leafSizeCap ? MEDIAN : LEAF;
       if (scale[0] !== 0 || scale[1] !== 0 || scale[2] !== 0) {
         resetBins(binN, binB, bins, binStride);
-        binRange(srcBoxes, start, start + count, bins, binStride, scale, binN, binB, sampled ? stride : 1);
-        decision = decideSplit(binN, binB, bins, binStride, scale, box, boxAt, count, params, rightArea, rightN, choice);
+        if (wasm) {
+          const p = srcBoxes.byteOffset + start * 32;
+          wasm.exports.bin(p, p + count * 32, step * 32, scale[0]!, scale[1]!, scale[2]!, scale[3]!, scale[4]!, scale[5]!, bins - 1, bins - 1, binB.byteOffset, binN.byteOffset, binStride);
+        } else {
+          binRange(srcBoxes, start, start + count, step, scale, bins, binStride, binN, binB);
+        }
+        const parentArea = halfArea(box[boxAt]!, box[boxAt + 1]!, box[boxAt + 2]!, box[boxAt + 3]!, box[boxAt + 4]!, box[boxAt + 5]!);
+        if (wasm) {
+          const mask = (scale[0] !== 0 ? 1 : 0) | (scale[1] !== 0 ? 2 : 0) | (scale[2] !== 0 ? 4 : 0);
+          wasm.exports.sweep(binB.byteOffset, binN.byteOffset, bins, binStride, mask, parentArea, sweepTmp, sweepAt);
+          swept[0] = sweepCost[0]!;
+          swept[1] = sweepInts[0]!;
+          swept[2] = sweepInts[1]!;
+          swept[3] = sweepInts[2]!;
+          swept[4] = sweepInts[3]!;
+        } else {
+          sweepBins(binN, binB, bins, binStride, scale, parentArea, rightArea, rightN, swept);
+        }
+        decision = decideSplit(swept, parentArea, count, params, choice);
       }
       if (decision === LEAF) return -1;
+      const axis = choice[0]!, plane = choice[1]!;
       let mid: number;
       if (decision === SAH && sampled) {
-        mid = partitionSampled(srcBoxes, srcIds, dstBoxes, dstIds, start, start + count, choice[0]!, scale, bins, choice[1]!, out);
+        if (wasm) {
+          const left = wasm.exports.partitionSampled(
+            srcBoxes.byteOffset + start * 32, srcBoxes.byteOffset + (start + count) * 32,
+            dstBoxes.byteOffset + start * 32, dstBoxes.byteOffset + (start + count - 1) * 32,
+            srcIds.byteOffset + start * 4, dstIds.byteOffset + start * 4, dstIds.byteOffset + (start + count - 1) * 4,
+            axis * 4, scale[axis]!, scale[3 + axis]!, bins - 1, bins - 1, plane, resultsAt,
+          );
+          mid = start + left;
+          readVectors(0, out, 0);
+          readVectors(2, out, 6);
+          readVectors(4, out, 12);
+          readVectors(6, out, 18);
+        } else {
+          mid = partitionSampled(srcBoxes, srcIds, dstBoxes, dstIds, start, start + count, axis, scale, bins, plane, out);
+        }
         if (withinDepthBudget(count, mid - start, depth, params)) return mid;
         // Too lopsided for the depth left: median split of the (now partitioned) destination slots.
         mid = medianSplit(dstBoxes, dstIds, dstBoxes, dstIds, start, count, cb, cbAt);
       } else if (decision === SAH && withinDepthBudget(count, choice[2]!, depth, params)) {
         mid = start + choice[2]!;
-        binUnion(binN, binB, bins, binStride, choice[0]!, choice[1]!, sides);
-        partitionRange(srcBoxes, srcIds, dstBoxes, dstIds, start, start + count, choice[0]!, scale, bins, choice[1]!, start, mid, cbs);
+        binUnion(binN, binB, bins, binStride, axis, plane, sides);
+        if (wasm) {
+          wasm.exports.partition(
+            srcBoxes.byteOffset + start * 32, srcBoxes.byteOffset + (start + count) * 32,
+            dstBoxes.byteOffset + start * 32, dstBoxes.byteOffset + mid * 32,
+            srcIds.byteOffset + start * 4, dstIds.byteOffset + start * 4, dstIds.byteOffset + mid * 4,
+            axis * 4, scale[axis]!, scale[3 + axis]!, bins - 1, bins - 1, plane, resultsAt,
+          );
+          readVectors(0, cbs, 0);
+          readVectors(2, cbs, 6);
+        } else {
+          partitionRange(srcBoxes, srcIds, dstBoxes, dstIds, start, start + count, axis, scale, bins, plane, start, mid, cbs);
+        }
         for (let c = 0; c < 6; c++) {
           out[c] = sides[c]!;
           out[6 + c] = cbs[c]!;
@@ -596,8 +686,8 @@ export function createBvhKernels() {
       } else {
         mid = medianSplit(srcBoxes, srcIds, dstBoxes, dstIds, start, count, cb, cbAt);
       }
-      scanBounds(dstBoxes, start, mid, out, 0);
-      scanBounds(dstBoxes, mid, start + count, out, 12);
+      scan(dstBoxes, start, mid, out, 0);
+      scan(dstBoxes, mid, start + count, out, 12);
       return mid;
     }
     return split;
@@ -614,7 +704,7 @@ export function createBvhKernels() {
    */
   function createSubtreeBuild(task: SubtreeTask): SubtreeBuild {
     const { count: total, slotBase, params } = task;
-    const split = createSplitter(params);
+    const split = createSplitter(params, task.wasm);
     const nodeF = new Float32Array(task.nodes);
     const nodeU = new Uint32Array(task.nodes);
     const stackCap = 2 * (params.maxDepth + 2);
@@ -710,8 +800,8 @@ export function createBvhKernels() {
 
   return {
     LEAF, MEDIAN, SAH,
-    emptyBounds, mergeBounds, computeBoxes, scanBounds, binScales, resetBins, mergeBins, binRange,
-    decideSplit, binUnion, withinDepthBudget, partitionSampled, partitionRange, medianSplit,
+    emptyBounds, mergeBounds, computeBoxes, scanBounds, binScales, resetBins, binRange,
+    sweepBins, decideSplit, binUnion, withinDepthBudget, partitionSampled, partitionRange, medianSplit,
     createSplitter, settleLeaf, createSubtreeBuild,
   };
 }

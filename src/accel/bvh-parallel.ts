@@ -20,6 +20,7 @@
 import { computeSahCost } from './bvh-sah.ts';
 import type { BvhBuildParams } from './bvh-kernels.ts';
 import { BVH_NODE_BYTES, bvhKernels } from './bvh-serial.ts';
+import { compiledBvhWasm, wasmSlotLayout } from './bvh-wasm.ts';
 import type { BvhBuildResult } from './bvh-builder.ts';
 import type { BvhWorkerPool, BvhWorkerReply } from './bvh-worker-pool.ts';
 
@@ -75,18 +76,32 @@ export async function buildOnWorkers(
     sharedPositions = new Float32Array(new SharedArrayBuffer(positions.byteLength));
     sharedPositions.set(positions);
   }
-  const boxes0 = new Float32Array(new SharedArrayBuffer(n * 24));
-  const boxes1 = new Float32Array(new SharedArrayBuffer(n * 24));
-  const ids0 = new Uint32Array(new SharedArrayBuffer(n * 4));
-  const ids1 = new Uint32Array(new SharedArrayBuffer(n * 4));
+  // Slots in one shared WebAssembly memory (the SIMD loops) or, without it, in SharedArrayBuffers.
+  const module = compiledBvhWasm(true);
+  const layout = module ? wasmSlotLayout(n, workerCount, params.binCount) : null;
+  let memory: WebAssembly.Memory | undefined;
+  try {
+    if (layout) memory = new WebAssembly.Memory({ initial: layout.pages, maximum: layout.pages, shared: true });
+  } catch {
+    memory = undefined;
+  }
+  const ids0 = memory ? new Uint32Array(memory.buffer, layout!.ids0, n) : new Uint32Array(new SharedArrayBuffer(n * 4));
+  const slots = memory ? undefined : {
+    boxes0: new Float32Array(new SharedArrayBuffer(n * 32)),
+    ids0,
+    boxes1: new Float32Array(new SharedArrayBuffer(n * 32)),
+    ids1: new Uint32Array(new SharedArrayBuffer(n * 4)),
+  };
   const abort = new Int32Array(new SharedArrayBuffer(4));
   const onAbort = (): void => void Atomics.store(abort, 0, 1);
   run.signal?.addEventListener('abort', onAbort, { once: true });
   const aborted = (): void => run.signal?.throwIfAborted();
 
-  const begin = { op: 'begin', build, positions: sharedPositions, boxes0, ids0, boxes1, ids1, abort, params };
+  const begin = memory
+    ? { op: 'begin', build, positions: sharedPositions, memory, module, layout, abort, params }
+    : { op: 'begin', build, positions: sharedPositions, slots, abort, params };
   try {
-    await Promise.all(Array.from({ length: workerCount }, (_, w) => pool.request(w, begin)));
+    await Promise.all(Array.from({ length: workerCount }, (_, w) => pool.request(w, { ...begin, scratch: w * (layout?.scratchBytes ?? 0) })));
     aborted();
 
     // 1. Prepass, one chunk per worker; min/max merge exactly, so the root bounds equal the serial ones.
@@ -291,10 +306,14 @@ async function buildOnOneWorker(
   positions: Float32Array, params: BvhBuildParams, pool: BvhWorkerPool, run: ParallelRunOptions, startTime: number,
 ): Promise<BvhBuildResult> {
   const copy = positions.slice();
+  const n = positions.length / 9;
+  const module = compiledBvhWasm(false);
+  const layout = module ? wasmSlotLayout(n, 1, params.binCount) : null;
   const reply = await new Promise<BvhWorkerReply>((resolve, reject) => {
     const onAbort = (): void => reject(run.signal!.reason);
     run.signal?.addEventListener('abort', onAbort, { once: true });
-    pool.request(0, { op: 'full', build: 0, positions: copy, params }, [copy.buffer]).then(resolve, reject)
+    const wasm = module && layout ? { module, layout } : {};
+    pool.request(0, { op: 'full', build: 0, positions: copy, params, ...wasm }, [copy.buffer]).then(resolve, reject)
       .finally(() => run.signal?.removeEventListener('abort', onAbort));
   });
   const nodes = reply.nodes as ArrayBuffer;

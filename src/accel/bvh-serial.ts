@@ -3,7 +3,8 @@
  * every build path needs: settings validation and the result record.
  */
 import { computeSahCost } from './bvh-sah.ts';
-import { createBvhKernels, type BvhBuildParams, type BvhKernels } from './bvh-kernels.ts';
+import { createBvhKernels, type BvhBuildParams, type BvhKernels, type BvhWasmBackend, type SlotBuffers } from './bvh-kernels.ts';
+import { compiledBvhWasm, wasmSlotLayout } from './bvh-wasm.ts';
 import type { BvhBuildOptions, BvhBuildResult } from './bvh-builder.ts';
 
 /** Hard depth limit: the WGSL traversal stack holds 64 entries and pushes at most one per level. */
@@ -66,17 +67,40 @@ export interface SerialBuildState {
   finish(): BvhBuildResult;
 }
 
-/** A resumable single-threaded build: the AABB prepass in chunks, then one depth-first subtree build. */
-export function createSerialBuildState(positions: Float32Array, params: BvhBuildParams): SerialBuildState {
+/** Where the single-threaded build keeps its slots: WebAssembly memory when the SIMD loops run here. */
+function allocateSlots(n: number, params: BvhBuildParams, useWasm: boolean): { slots: SlotBuffers; wasm?: BvhWasmBackend } {
+  const module = useWasm ? compiledBvhWasm(false) : null;
+  const layout = module ? wasmSlotLayout(n, 1, params.binCount) : null;
+  if (module && layout) {
+    try {
+      const memory = new WebAssembly.Memory({ initial: layout.pages });
+      const instance = new WebAssembly.Instance(module, { env: { memory } });
+      const buffer = memory.buffer;
+      return {
+        slots: {
+          boxes0: new Float32Array(buffer, layout.boxes0, n * 8),
+          boxes1: new Float32Array(buffer, layout.boxes1, n * 8),
+          ids0: new Uint32Array(buffer, layout.ids0, n),
+          ids1: new Uint32Array(buffer, layout.ids1, n),
+        },
+        wasm: { exports: instance.exports as unknown as BvhWasmBackend['exports'], buffer, scratch: 0 },
+      };
+    } catch {
+      // Out of memory for one contiguous block, or an engine without SIMD: the JS loops do the same.
+    }
+  }
+  return { slots: { boxes0: new Float32Array(n * 8), ids0: new Uint32Array(n), boxes1: new Float32Array(n * 8), ids1: new Uint32Array(n) } };
+}
+
+/**
+ * A resumable single-threaded build: the AABB prepass in chunks, then one depth-first subtree build.
+ * `useWasm: false` keeps every loop in JS (the same tree; for tests and engines without WebAssembly).
+ */
+export function createSerialBuildState(positions: Float32Array, params: BvhBuildParams, useWasm = true): SerialBuildState {
   const startTime = performance.now();
   const n = positions.length / 9;
   const k = bvhKernels();
-  const slots = {
-    boxes0: new Float32Array(n * 6),
-    ids0: new Uint32Array(n),
-    boxes1: new Float32Array(n * 6),
-    ids1: new Uint32Array(n),
-  };
+  const { slots, wasm } = allocateSlots(n, params, useWasm && n > 0);
   const rootBounds = new Float64Array(12);
   k.emptyBounds(rootBounds, 0);
   // A binary tree whose leaves hold >= 1 triangle has at most 2n - 1 nodes.
@@ -93,7 +117,7 @@ export function createSerialBuildState(positions: Float32Array, params: BvhBuild
       boundsDone = end;
       if (performance.now() >= deadline && boundsDone < n) return false;
     }
-    build ??= k.createSubtreeBuild({ ...slots, count: n, slotBase: 0, depth: 0, rootBounds, nodes, params });
+    build ??= k.createSubtreeBuild({ ...slots, count: n, slotBase: 0, depth: 0, rootBounds, nodes, params, wasm });
     done = build.step(deadline);
     return done;
   };
@@ -107,7 +131,8 @@ export function createSerialBuildState(positions: Float32Array, params: BvhBuild
     return {
       nodes: exact,
       nodeCount,
-      triangleOrder: slots.ids0,
+      // Out of WebAssembly memory into a buffer of its own (the memory is dropped with the build).
+      triangleOrder: wasm ? slots.ids0.slice() : slots.ids0,
       depth: build!.depthReached(),
       leafCount: build!.leafCount(),
       sahCost: computeSahCost(exact, { nodeCount }),

@@ -4,15 +4,18 @@
  * bvh-worker-pool.ts), so it runs unchanged from the .ts sources, dist/esm, dist/cjs or a bundle.
  *
  * Requests carry an `id` that the reply echoes. Ops:
- * - `begin`: the shared slot buffers (SharedArrayBuffer views) and settings of build `build`;
+ * - `begin`: the shared slot buffers and settings of build `build`: either views of SharedArrayBuffers
+ *   (JS loops) or a shared WebAssembly memory with the compiled module, the layout and this
+ *   worker's scratch offset (WebAssembly loops);
  * - `boxes`: triangle AABBs of [from, to) (the prepass), replying their bounds;
  * - `split`: one node split (`mid` = -1 for a leaf), replying the children's bounds;
  * - `subtree`: a whole subtree in depth-first order into a fresh node buffer (transferred back);
  *   it stops early, replying `aborted`, once the build's shared abort flag is set;
  * - `end`: forget build `build`;
- * - `full`: the whole single-threaded build of copied positions (no shared memory needed).
+ * - `full`: the whole single-threaded build of copied positions (no shared memory needed), in a
+ *   WebAssembly memory of its own when a module and layout come with it.
  */
-import type { BvhBuildParams, BvhKernels, SlotBuffers } from './bvh-kernels.ts';
+import type { BvhBuildParams, BvhKernels, BvhWasmBackend, SlotBuffers } from './bvh-kernels.ts';
 
 /** What the worker needs from its host: Node's `parentPort` or a browser worker's global scope. */
 export interface BvhWorkerHost {
@@ -29,8 +32,24 @@ export interface WorkerBuildMessage {
 
 export function bvhWorkerMain(createKernels: () => BvhKernels, host: BvhWorkerHost): void {
   const k = createKernels();
+  interface Layout { boxes0: number; boxes1: number; ids0: number; ids1: number; pages: number }
+  /** Views of a build's slots in WebAssembly memory, and the loops bound to it. */
+  const wasmSlots = (memory: WebAssembly.Memory, module: WebAssembly.Module, layout: Layout, n: number, scratch: number): { slots: SlotBuffers; wasm: BvhWasmBackend } => {
+    const instance = new WebAssembly.Instance(module, { env: { memory } });
+    const buffer = memory.buffer;
+    return {
+      slots: {
+        boxes0: new Float32Array(buffer, layout.boxes0, n * 8),
+        boxes1: new Float32Array(buffer, layout.boxes1, n * 8),
+        ids0: new Uint32Array(buffer, layout.ids0, n),
+        ids1: new Uint32Array(buffer, layout.ids1, n),
+      },
+      wasm: { exports: instance.exports as unknown as BvhWasmBackend['exports'], buffer, scratch },
+    };
+  };
   interface Build {
     slots: SlotBuffers;
+    wasm?: BvhWasmBackend;
     positions: Float32Array;
     params: BvhBuildParams;
     abort: Int32Array;
@@ -43,12 +62,17 @@ export function bvhWorkerMain(createKernels: () => BvhKernels, host: BvhWorkerHo
   const handle = (m: WorkerBuildMessage): { reply: Record<string, unknown>; transfer: Transferable[] } => {
     if (m.op === 'begin') {
       const params = m.params as BvhBuildParams;
+      const n = (m.positions as Float32Array).length / 9;
+      const { slots, wasm } = m.memory
+        ? wasmSlots(m.memory as WebAssembly.Memory, m.module as WebAssembly.Module, m.layout as Layout, n, m.scratch as number)
+        : { slots: m.slots as SlotBuffers, wasm: undefined };
       builds.set(m.build, {
-        slots: { boxes0: m.boxes0 as Float32Array, ids0: m.ids0 as Uint32Array, boxes1: m.boxes1 as Float32Array, ids1: m.ids1 as Uint32Array },
+        slots,
+        wasm,
         positions: m.positions as Float32Array,
         params,
         abort: m.abort as Int32Array,
-        split: k.createSplitter(params),
+        split: k.createSplitter(params, wasm),
       });
       return { reply: {}, transfer: [] };
     }
@@ -60,17 +84,21 @@ export function bvhWorkerMain(createKernels: () => BvhKernels, host: BvhWorkerHo
       const positions = m.positions as Float32Array;
       const params = m.params as BvhBuildParams;
       const n = positions.length / 9;
-      const slots = { boxes0: new Float32Array(n * 6), ids0: new Uint32Array(n), boxes1: new Float32Array(n * 6), ids1: new Uint32Array(n) };
+      const layout = m.layout as Layout | undefined;
+      const { slots, wasm } = m.module && layout
+        ? wasmSlots(new WebAssembly.Memory({ initial: layout.pages }), m.module as WebAssembly.Module, layout, n, 0)
+        : { slots: { boxes0: new Float32Array(n * 8), ids0: new Uint32Array(n), boxes1: new Float32Array(n * 8), ids1: new Uint32Array(n) }, wasm: undefined };
       const rootBounds = new Float64Array(12);
       k.emptyBounds(rootBounds, 0);
       k.computeBoxes(positions, slots.boxes0, slots.ids0, 0, n, rootBounds, 0);
       const nodes = new ArrayBuffer(Math.max(1, 2 * n - 1) * 32);
-      const b = k.createSubtreeBuild({ ...slots, count: n, slotBase: 0, depth: 0, rootBounds, nodes, params });
+      const b = k.createSubtreeBuild({ ...slots, count: n, slotBase: 0, depth: 0, rootBounds, nodes, params, wasm });
       b.step(Infinity);
       const exact = nodes.slice(0, b.nodeCount() * 32);
+      const order = wasm ? slots.ids0.slice() : slots.ids0;
       return {
-        reply: { nodes: exact, nodeCount: b.nodeCount(), leafCount: b.leafCount(), depth: b.depthReached(), order: slots.ids0 },
-        transfer: [exact, slots.ids0.buffer],
+        reply: { nodes: exact, nodeCount: b.nodeCount(), leafCount: b.leafCount(), depth: b.depthReached(), order },
+        transfer: [exact, order.buffer as ArrayBuffer],
       };
     }
     const build = builds.get(m.build);
@@ -95,9 +123,9 @@ export function bvhWorkerMain(createKernels: () => BvhKernels, host: BvhWorkerHo
       const s = build.slots;
       const nodes = new ArrayBuffer((2 * count - 1) * 32);
       const b = k.createSubtreeBuild({
-        boxes0: s.boxes0.subarray(start * 6, (start + count) * 6),
+        boxes0: s.boxes0.subarray(start * 8, (start + count) * 8),
         ids0: s.ids0.subarray(start, start + count),
-        boxes1: s.boxes1.subarray(start * 6, (start + count) * 6),
+        boxes1: s.boxes1.subarray(start * 8, (start + count) * 8),
         ids1: s.ids1.subarray(start, start + count),
         count,
         slotBase: start,
@@ -105,6 +133,7 @@ export function bvhWorkerMain(createKernels: () => BvhKernels, host: BvhWorkerHo
         rootBounds: bounds,
         nodes,
         params: build.params,
+        wasm: build.wasm,
       });
       for (;;) {
         if (Atomics.load(build.abort, 0) !== 0) return { reply: { aborted: true }, transfer: [] };

@@ -1,0 +1,428 @@
+/**
+ * The BVH build's hot loops as a small WebAssembly module with 128-bit SIMD, generated here as
+ * bytes (no toolchain, no binary blob in the repository). WebAssembly 2.0 (core spec, sec. 5:
+ * binary format) with fixed-width SIMD (v128) and non-trapping float-to-int conversions; every
+ * engine that runs WebGPU runs it.
+ *
+ * Slot layout (shared with the JS loops in bvh-kernels.ts): 32 bytes per slot, two f32x4 vectors
+ * (min x, y, z, 0) and (max x, y, z, 0); triangle ids in a separate u32 array. Bins: 32 bytes each
+ * (min vector, max vector), `binStride` bins per axis; counts: i32, `binStride` per axis.
+ *
+ * Each function mirrors its JS twin operation for operation: the doubled centroid is the f32 sum
+ * min + max (f32x4.add is lane-wise IEEE binary32 addition, as Math.fround(min + max)); the bin is
+ * trunc(k * (f64(c) - m)) clamped to [0, bins - 1] in f64; min/max use pmin/pmax (`b < a ? b : a`,
+ * the JS `if (v < cur) cur = v`). So both give the same bins, partitions and trees, bit for bit.
+ */
+
+// Opcodes (core spec sec. 5.4) and SIMD opcodes (0xFD prefix, LEB128 sub-opcodes).
+const I32 = 0x7f, F64 = 0x7c, V128 = 0x7b;
+const OP = {
+  block: 0x02, loop: 0x03, if: 0x04, else: 0x05, end: 0x0b, br: 0x0c, brIf: 0x0d, return: 0x0f,
+  localGet: 0x20, localSet: 0x21, localTee: 0x22,
+  i32Load: 0x28, f32Load: 0x2a, i32Store: 0x36, f64Store: 0x39,
+  i32Const: 0x41, f64Const: 0x44,
+  i32Eqz: 0x45, i32Ne: 0x47, i32LtS: 0x48, i32GtS: 0x4a, i32LtU: 0x49, i32GeS: 0x4e, i32GeU: 0x4f, i32And: 0x71,
+  f64Load: 0x2b, f64Lt: 0x63, f64Add: 0xa0, f64ConvertI32S: 0xb7,
+  i32Add: 0x6a, i32Sub: 0x6b, i32Mul: 0x6c, i32Shl: 0x74, i32ShrU: 0x76,
+  f32Add: 0x92, f64Sub: 0xa1, f64Mul: 0xa2, f64PromoteF32: 0xbb,
+  select: 0x1b,
+} as const;
+const SIMD = {
+  load: 0x00, store: 0x0b, const: 0x0c, f32x4ExtractLane: 0x1f, f32x4Add: 0xe4, f32x4Pmin: 0xea, f32x4Pmax: 0xeb,
+} as const;
+const TRUNC_SAT_F64_S = 0x02; // 0xFC prefix
+
+function uleb(value: number, out: number[]): void {
+  let v = value >>> 0;
+  do {
+    let byte = v & 0x7f;
+    v >>>= 7;
+    if (v !== 0) byte |= 0x80;
+    out.push(byte);
+  } while (v !== 0);
+}
+
+function sleb(value: number, out: number[]): void {
+  let v = value | 0;
+  for (;;) {
+    const byte = v & 0x7f;
+    v >>= 7;
+    if ((v === 0 && (byte & 0x40) === 0) || (v === -1 && (byte & 0x40) !== 0)) {
+      out.push(byte);
+      return;
+    }
+    out.push(byte | 0x80);
+  }
+}
+
+/** Instruction emitter for one function body. */
+class Code {
+  readonly bytes: number[] = [];
+  op(...codes: number[]): this {
+    this.bytes.push(...codes);
+    return this;
+  }
+  get(i: number): this {
+    this.bytes.push(OP.localGet);
+    uleb(i, this.bytes);
+    return this;
+  }
+  set(i: number): this {
+    this.bytes.push(OP.localSet);
+    uleb(i, this.bytes);
+    return this;
+  }
+  tee(i: number): this {
+    this.bytes.push(OP.localTee);
+    uleb(i, this.bytes);
+    return this;
+  }
+  i32(v: number): this {
+    this.bytes.push(OP.i32Const);
+    sleb(v, this.bytes);
+    return this;
+  }
+  f64(v: number): this {
+    this.bytes.push(OP.f64Const);
+    const b = new Uint8Array(new Float64Array([v]).buffer);
+    this.bytes.push(...b);
+    return this;
+  }
+  /** Memory access with alignment exponent `align` and constant `offset`. */
+  mem(opcode: number, align: number, offset = 0): this {
+    this.bytes.push(opcode);
+    uleb(align, this.bytes);
+    uleb(offset, this.bytes);
+    return this;
+  }
+  simd(sub: number): this {
+    this.bytes.push(0xfd);
+    uleb(sub, this.bytes);
+    return this;
+  }
+  vload(offset = 0): this {
+    this.simd(SIMD.load);
+    uleb(4, this.bytes);
+    uleb(offset, this.bytes);
+    return this;
+  }
+  vstore(offset = 0): this {
+    this.simd(SIMD.store);
+    uleb(4, this.bytes);
+    uleb(offset, this.bytes);
+    return this;
+  }
+  /** v128.const of four f32. */
+  vconstF32(a: number, b: number, c: number, d: number): this {
+    this.simd(SIMD.const);
+    this.bytes.push(...new Uint8Array(new Float32Array([a, b, c, d]).buffer));
+    return this;
+  }
+  lane(index: number): this {
+    this.simd(SIMD.f32x4ExtractLane);
+    this.bytes.push(index);
+    return this;
+  }
+  truncSat(): this {
+    this.bytes.push(0xfc);
+    uleb(TRUNC_SAT_F64_S, this.bytes);
+    return this;
+  }
+}
+
+interface FunctionDef {
+  name: string;
+  params: number[];
+  results: number[];
+  /** Extra locals, in order after the params. */
+  locals: number[];
+  body: Code;
+}
+
+function encodeModule(functions: FunctionDef[], shared: boolean): Uint8Array {
+  const out: number[] = [0x00, 0x61, 0x73, 0x6d, 0x01, 0x00, 0x00, 0x00];
+  const section = (id: number, content: number[]): void => {
+    out.push(id);
+    uleb(content.length, out);
+    out.push(...content);
+  };
+  const vec = (items: number[][]): number[] => {
+    const v: number[] = [];
+    uleb(items.length, v);
+    for (const item of items) v.push(...item);
+    return v;
+  };
+  const name = (s: string): number[] => {
+    const bytes = [...new TextEncoder().encode(s)];
+    const v: number[] = [];
+    uleb(bytes.length, v);
+    return [...v, ...bytes];
+  };
+  // 1 types (one per function), 2 imports (env.memory), 3 functions, 7 exports, 10 code.
+  section(1, vec(functions.map((f) => [0x60, ...vec(f.params.map((t) => [t])), ...vec(f.results.map((t) => [t]))])));
+  // Memory limits: min 1 page; a shared memory needs a maximum (the whole 4 GiB address space, so any
+  // shared memory the caller makes fits).
+  const limits: number[] = shared ? [0x03, 0x01] : [0x00, 0x01];
+  if (shared) uleb(65536, limits);
+  section(2, vec([[...name('env'), ...name('memory'), 0x02, ...limits]]));
+  section(3, vec(functions.map((_, i) => { const v: number[] = []; uleb(i, v); return v; })));
+  section(7, vec(functions.map((f, i) => { const v: number[] = [...name(f.name), 0x00]; uleb(i, v); return v; })));
+  section(10, vec(functions.map((f) => {
+    const body: number[] = [];
+    // Locals, run-length encoded by type.
+    const groups: Array<[number, number]> = [];
+    for (const t of f.locals) {
+      const g = groups[groups.length - 1];
+      if (g && g[1] === t) g[0]++;
+      else groups.push([1, t]);
+    }
+    uleb(groups.length, body);
+    for (const [count, t] of groups) { uleb(count, body); body.push(t); }
+    body.push(...f.body.bytes, OP.end);
+    const sized: number[] = [];
+    uleb(body.length, sized);
+    return [...sized, ...body];
+  })));
+  return new Uint8Array(out);
+}
+
+/**
+ * Pushes the clamped bin of f = (c - m) * k (f64 in local `f`): f >= last ? lastI : f > 0 ? trunc(f) : 0,
+ * as the JS `f >= last ? last : f > 0 ? f | 0 : 0`.
+ */
+function binIndex(code: Code, f: number, last: number, lastI: number): void {
+  code.get(lastI).get(f).truncSat().i32(0).get(f).f64(0).op(0x64 /* f64.gt */).op(OP.select)
+    .get(f).get(last).op(0x66 /* f64.ge */).op(OP.select);
+}
+
+const INF = Infinity;
+
+function binFunction(): FunctionDef {
+  // (p, end, step, k0, k1, k2, m0, m1, m2, last, lastI, binBase, cntBase, binStride)
+  const [p, end, step, k0, k1, k2, m0, m1, m2, last, lastI, binBase, cntBase, binStride] = [0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13];
+  const [mn, mx, c, f, q, addr, b1, b2, n1, n2] = [14, 15, 16, 17, 18, 19, 20, 21, 22, 23];
+  const code = new Code();
+  // Axis bases: bins at binBase + a * binStride * 32, counts at cntBase + a * binStride * 4.
+  code.get(binBase).get(binStride).i32(5).op(OP.i32Shl).op(OP.i32Add).tee(b1)
+    .get(binStride).i32(5).op(OP.i32Shl).op(OP.i32Add).set(b2);
+  code.get(cntBase).get(binStride).i32(2).op(OP.i32Shl).op(OP.i32Add).tee(n1)
+    .get(binStride).i32(2).op(OP.i32Shl).op(OP.i32Add).set(n2);
+  code.op(OP.block, 0x40).get(p).get(end).op(OP.i32GeU).op(OP.brIf, 0);
+  code.op(OP.loop, 0x40);
+  code.get(p).vload(0).set(mn).get(p).vload(16).set(mx).get(mn).get(mx).simd(SIMD.f32x4Add).set(c);
+  const axes: Array<[number, number, number, number]> = [[k0, m0, binBase, cntBase], [k1, m1, b1, n1], [k2, m2, b2, n2]];
+  axes.forEach(([k, m, base, cnt], axis) => {
+    code.get(c).lane(axis).op(OP.f64PromoteF32).get(m).op(OP.f64Sub).get(k).op(OP.f64Mul).set(f);
+    binIndex(code, f, last, lastI);
+    code.set(q);
+    code.get(q).i32(5).op(OP.i32Shl).get(base).op(OP.i32Add).set(addr);
+    code.get(addr).get(addr).vload(0).get(mn).simd(SIMD.f32x4Pmin).vstore(0);
+    code.get(addr).get(addr).vload(16).get(mx).simd(SIMD.f32x4Pmax).vstore(16);
+    code.get(q).i32(2).op(OP.i32Shl).get(cnt).op(OP.i32Add).tee(addr).get(addr).mem(OP.i32Load, 2).i32(1).op(OP.i32Add).mem(OP.i32Store, 2);
+  });
+  code.get(p).get(step).op(OP.i32Add).tee(p).get(end).op(OP.i32LtU).op(OP.brIf, 0);
+  code.op(OP.end, OP.end);
+  return { name: 'bin', params: [I32, I32, I32, F64, F64, F64, F64, F64, F64, F64, I32, I32, I32, I32], results: [], locals: [V128, V128, V128, F64, I32, I32, I32, I32, I32, I32], body: code };
+}
+
+function partitionFunction(): FunctionDef {
+  // (p, end, dl, dr, ip, il, ir, axisOff, k, m, last, lastI, plane, out)
+  const [p, end, dl, dr, ip, il, ir, axisOff, k, m, last, lastI, plane, out] = [0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13];
+  const [mn, mx, c, lmin, lmax, rmin, rmax, f, a] = [14, 15, 16, 17, 18, 19, 20, 21, 22];
+  const code = new Code();
+  code.vconstF32(INF, INF, INF, INF).tee(lmin).set(rmin).vconstF32(-INF, -INF, -INF, -INF).tee(lmax).set(rmax);
+  code.op(OP.block, 0x40).get(p).get(end).op(OP.i32GeU).op(OP.brIf, 0);
+  code.op(OP.loop, 0x40);
+  code.get(p).vload(0).set(mn).get(p).vload(16).set(mx).get(mn).get(mx).simd(SIMD.f32x4Add).set(c);
+  code.get(p).get(axisOff).op(OP.i32Add).tee(a).mem(OP.f32Load, 2).get(a).mem(OP.f32Load, 2, 16).op(OP.f32Add)
+    .op(OP.f64PromoteF32).get(m).op(OP.f64Sub).get(k).op(OP.f64Mul).set(f);
+  binIndex(code, f, last, lastI);
+  code.get(plane).op(OP.i32LtS);
+  code.op(OP.if, 0x40);
+  code.get(dl).get(mn).vstore(0).get(dl).get(mx).vstore(16).get(il).get(ip).mem(OP.i32Load, 2).mem(OP.i32Store, 2);
+  code.get(dl).i32(32).op(OP.i32Add).set(dl).get(il).i32(4).op(OP.i32Add).set(il);
+  code.get(lmin).get(c).simd(SIMD.f32x4Pmin).set(lmin).get(lmax).get(c).simd(SIMD.f32x4Pmax).set(lmax);
+  code.op(OP.else);
+  code.get(dr).get(mn).vstore(0).get(dr).get(mx).vstore(16).get(ir).get(ip).mem(OP.i32Load, 2).mem(OP.i32Store, 2);
+  code.get(dr).i32(32).op(OP.i32Add).set(dr).get(ir).i32(4).op(OP.i32Add).set(ir);
+  code.get(rmin).get(c).simd(SIMD.f32x4Pmin).set(rmin).get(rmax).get(c).simd(SIMD.f32x4Pmax).set(rmax);
+  code.op(OP.end);
+  code.get(ip).i32(4).op(OP.i32Add).set(ip);
+  code.get(p).i32(32).op(OP.i32Add).tee(p).get(end).op(OP.i32LtU).op(OP.brIf, 0);
+  code.op(OP.end, OP.end);
+  code.get(out).get(lmin).vstore(0).get(out).get(lmax).vstore(16).get(out).get(rmin).vstore(32).get(out).get(rmax).vstore(48);
+  return { name: 'partition', params: [I32, I32, I32, I32, I32, I32, I32, I32, F64, F64, F64, I32, I32, I32], results: [], locals: [V128, V128, V128, V128, V128, V128, V128, F64, I32], body: code };
+}
+
+function partitionSampledFunction(): FunctionDef {
+  // (p, end, dl, dr, ip, il, ir, axisOff, k, m, last, lastI, plane, out) -> left count; dr/ir address the LAST slot/id.
+  const [p, end, dl, dr, ip, il, ir, axisOff, k, m, last, lastI, plane, out] = [0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13];
+  const [mn, mx, c, lbmin, lbmax, lcmin, lcmax, rbmin, rbmax, rcmin, rcmax, f, a, nl] = [14, 15, 16, 17, 18, 19, 20, 21, 22, 23, 24, 25, 26, 27];
+  const code = new Code();
+  code.vconstF32(INF, INF, INF, INF).tee(lbmin).tee(lcmin).tee(rbmin).set(rcmin);
+  code.vconstF32(-INF, -INF, -INF, -INF).tee(lbmax).tee(lcmax).tee(rbmax).set(rcmax);
+  code.op(OP.block, 0x40).get(p).get(end).op(OP.i32GeU).op(OP.brIf, 0);
+  code.op(OP.loop, 0x40);
+  code.get(p).vload(0).set(mn).get(p).vload(16).set(mx).get(mn).get(mx).simd(SIMD.f32x4Add).set(c);
+  code.get(p).get(axisOff).op(OP.i32Add).tee(a).mem(OP.f32Load, 2).get(a).mem(OP.f32Load, 2, 16).op(OP.f32Add)
+    .op(OP.f64PromoteF32).get(m).op(OP.f64Sub).get(k).op(OP.f64Mul).set(f);
+  binIndex(code, f, last, lastI);
+  code.get(plane).op(OP.i32LtS);
+  code.op(OP.if, 0x40);
+  code.get(dl).get(mn).vstore(0).get(dl).get(mx).vstore(16).get(il).get(ip).mem(OP.i32Load, 2).mem(OP.i32Store, 2);
+  code.get(dl).i32(32).op(OP.i32Add).set(dl).get(il).i32(4).op(OP.i32Add).set(il).get(nl).i32(1).op(OP.i32Add).set(nl);
+  code.get(lbmin).get(mn).simd(SIMD.f32x4Pmin).set(lbmin).get(lbmax).get(mx).simd(SIMD.f32x4Pmax).set(lbmax);
+  code.get(lcmin).get(c).simd(SIMD.f32x4Pmin).set(lcmin).get(lcmax).get(c).simd(SIMD.f32x4Pmax).set(lcmax);
+  code.op(OP.else);
+  code.get(dr).get(mn).vstore(0).get(dr).get(mx).vstore(16).get(ir).get(ip).mem(OP.i32Load, 2).mem(OP.i32Store, 2);
+  code.get(dr).i32(32).op(OP.i32Sub).set(dr).get(ir).i32(4).op(OP.i32Sub).set(ir);
+  code.get(rbmin).get(mn).simd(SIMD.f32x4Pmin).set(rbmin).get(rbmax).get(mx).simd(SIMD.f32x4Pmax).set(rbmax);
+  code.get(rcmin).get(c).simd(SIMD.f32x4Pmin).set(rcmin).get(rcmax).get(c).simd(SIMD.f32x4Pmax).set(rcmax);
+  code.op(OP.end);
+  code.get(ip).i32(4).op(OP.i32Add).set(ip);
+  code.get(p).i32(32).op(OP.i32Add).tee(p).get(end).op(OP.i32LtU).op(OP.brIf, 0);
+  code.op(OP.end, OP.end);
+  code.get(out).get(lbmin).vstore(0).get(out).get(lbmax).vstore(16).get(out).get(lcmin).vstore(32).get(out).get(lcmax).vstore(48);
+  code.get(out).get(rbmin).vstore(64).get(out).get(rbmax).vstore(80).get(out).get(rcmin).vstore(96).get(out).get(rcmax).vstore(112);
+  code.get(nl);
+  return { name: 'partitionSampled', params: [I32, I32, I32, I32, I32, I32, I32, I32, F64, F64, F64, I32, I32, I32], results: [I32], locals: [V128, V128, V128, V128, V128, V128, V128, V128, V128, V128, V128, F64, I32, I32], body: code };
+}
+
+function scanFunction(): FunctionDef {
+  // (p, end, out): AABB min, max and doubled-centroid min, max of slots [p, end) as four vectors.
+  const [p, end, out] = [0, 1, 2];
+  const [mn, mx, c, bmin, bmax, cmin, cmax] = [3, 4, 5, 6, 7, 8, 9];
+  const code = new Code();
+  code.vconstF32(INF, INF, INF, INF).tee(bmin).set(cmin).vconstF32(-INF, -INF, -INF, -INF).tee(bmax).set(cmax);
+  code.op(OP.block, 0x40).get(p).get(end).op(OP.i32GeU).op(OP.brIf, 0);
+  code.op(OP.loop, 0x40);
+  code.get(p).vload(0).set(mn).get(p).vload(16).set(mx).get(mn).get(mx).simd(SIMD.f32x4Add).set(c);
+  code.get(bmin).get(mn).simd(SIMD.f32x4Pmin).set(bmin).get(bmax).get(mx).simd(SIMD.f32x4Pmax).set(bmax);
+  code.get(cmin).get(c).simd(SIMD.f32x4Pmin).set(cmin).get(cmax).get(c).simd(SIMD.f32x4Pmax).set(cmax);
+  code.get(p).i32(32).op(OP.i32Add).tee(p).get(end).op(OP.i32LtU).op(OP.brIf, 0);
+  code.op(OP.end, OP.end);
+  code.get(out).get(bmin).vstore(0).get(out).get(bmax).vstore(16).get(out).get(cmin).vstore(32).get(out).get(cmax).vstore(48);
+  return { name: 'scan', params: [I32, I32, I32], results: [], locals: [V128, V128, V128, V128, V128, V128, V128], body: code };
+}
+
+/** Pushes the half surface area (f64, as bvh-kernels' halfArea) of the box in vector locals `mn`, `mx`. */
+function halfArea(code: Code, mn: number, mx: number, dx: number, dy: number, dz: number): void {
+  [dx, dy, dz].forEach((d, lane) => {
+    code.get(mx).lane(lane).op(OP.f64PromoteF32).get(mn).lane(lane).op(OP.f64PromoteF32).op(OP.f64Sub).set(d);
+  });
+  code.get(dx).get(dy).op(OP.f64Mul).get(dy).get(dz).op(OP.f64Mul).op(OP.f64Add).get(dz).get(dx).op(OP.f64Mul).op(OP.f64Add);
+}
+
+function sweepFunction(): FunctionDef {
+  // (binBase, cntBase, bins, binStride, mask, parentArea, tmp, out): the SAH plane search of
+  // bvh-kernels' sweepBins; out: f64 best cost, i32 axis, plane, left count, binned count.
+  const [binBase, cntBase, bins, binStride, mask, parentArea, tmp, out] = [0, 1, 2, 3, 4, 5, 6, 7];
+  // Local 11 is unused (kept so the indices below stay as declared).
+  const [a, b, q, rn, ln, vmin, vmax, cost, best, bestAxis, bestPlane, bestLeftN, binned, dx, dy, dz, rnb, axisBase] =
+    [8, 9, 10, 12, 13, 14, 15, 16, 17, 18, 19, 20, 21, 22, 23, 24, 25, 26];
+  const code = new Code();
+  code.f64(INF).set(best).i32(-1).set(bestAxis);
+  code.op(OP.block, 0x40).op(OP.loop, 0x40); // axes
+  code.get(mask).get(a).op(0x75 /* i32.shr_s */).i32(1).op(OP.i32And).op(OP.if, 0x40);
+  code.get(a).get(binStride).op(OP.i32Mul).set(axisBase);
+  // Right to left: suffix areas and counts into tmp (f64 areas at tmp, i32 counts at tmp + 8 * binStride).
+  code.vconstF32(INF, INF, INF, INF).set(vmin).vconstF32(-INF, -INF, -INF, -INF).set(vmax).i32(0).set(rn);
+  code.get(bins).i32(1).op(OP.i32Sub).set(b);
+  code.op(OP.block, 0x40).get(b).i32(1).op(OP.i32LtS).op(OP.brIf, 0).op(OP.loop, 0x40);
+  code.get(axisBase).get(b).op(OP.i32Add).set(q);
+  code.get(rn).get(q).i32(2).op(OP.i32Shl).get(cntBase).op(OP.i32Add).mem(OP.i32Load, 2).op(OP.i32Add).set(rn);
+  code.get(q).i32(5).op(OP.i32Shl).get(binBase).op(OP.i32Add).set(q);
+  code.get(vmin).get(q).vload(0).simd(SIMD.f32x4Pmin).set(vmin).get(vmax).get(q).vload(16).simd(SIMD.f32x4Pmax).set(vmax);
+  code.get(b).i32(3).op(OP.i32Shl).get(tmp).op(OP.i32Add);
+  halfArea(code, vmin, vmax, dx, dy, dz);
+  code.f64(0).get(rn).i32(0).op(OP.i32GtS).op(OP.select).mem(OP.f64Store, 3);
+  code.get(b).i32(2).op(OP.i32Shl).get(tmp).op(OP.i32Add).get(binStride).i32(3).op(OP.i32Shl).op(OP.i32Add).get(rn).mem(OP.i32Store, 2);
+  code.get(b).i32(1).op(OP.i32Sub).tee(b).i32(1).op(OP.i32GeS).op(OP.brIf, 0);
+  code.op(OP.end, OP.end);
+  code.get(rn).get(axisBase).i32(2).op(OP.i32Shl).get(cntBase).op(OP.i32Add).mem(OP.i32Load, 2).op(OP.i32Add).set(binned);
+  // Left to right: prefix boxes, one cost per plane b + 1.
+  code.vconstF32(INF, INF, INF, INF).set(vmin).vconstF32(-INF, -INF, -INF, -INF).set(vmax).i32(0).set(ln).i32(0).set(b);
+  code.op(OP.block, 0x40).get(b).get(bins).i32(1).op(OP.i32Sub).op(OP.i32GeS).op(OP.brIf, 0).op(OP.loop, 0x40);
+  code.get(axisBase).get(b).op(OP.i32Add).set(q);
+  code.get(ln).get(q).i32(2).op(OP.i32Shl).get(cntBase).op(OP.i32Add).mem(OP.i32Load, 2).op(OP.i32Add).set(ln);
+  code.get(q).i32(5).op(OP.i32Shl).get(binBase).op(OP.i32Add).set(q);
+  code.get(vmin).get(q).vload(0).simd(SIMD.f32x4Pmin).set(vmin).get(vmax).get(q).vload(16).simd(SIMD.f32x4Pmax).set(vmax);
+  code.get(b).i32(1).op(OP.i32Add).i32(2).op(OP.i32Shl).get(tmp).op(OP.i32Add).get(binStride).i32(3).op(OP.i32Shl).op(OP.i32Add).mem(OP.i32Load, 2).set(rnb);
+  code.get(ln).i32(0).op(OP.i32Ne).get(rnb).i32(0).op(OP.i32Ne).op(OP.i32And).op(OP.if, 0x40);
+  // cost = parentArea + (area(left) * ln + rightArea[b + 1] * rn)
+  code.get(parentArea);
+  halfArea(code, vmin, vmax, dx, dy, dz);
+  code.get(ln).op(OP.f64ConvertI32S).op(OP.f64Mul);
+  code.get(b).i32(1).op(OP.i32Add).i32(3).op(OP.i32Shl).get(tmp).op(OP.i32Add).mem(OP.f64Load, 3).get(rnb).op(OP.f64ConvertI32S).op(OP.f64Mul);
+  code.op(OP.f64Add).op(OP.f64Add).tee(cost).get(best).op(OP.f64Lt).op(OP.if, 0x40);
+  code.get(cost).set(best).get(a).set(bestAxis).get(b).i32(1).op(OP.i32Add).set(bestPlane).get(ln).set(bestLeftN);
+  code.op(OP.end, OP.end);
+  code.get(b).i32(1).op(OP.i32Add).tee(b).get(bins).i32(1).op(OP.i32Sub).op(OP.i32LtS).op(OP.brIf, 0);
+  code.op(OP.end, OP.end);
+  code.op(OP.end); // if axis
+  code.get(a).i32(1).op(OP.i32Add).tee(a).i32(3).op(OP.i32LtS).op(OP.brIf, 0);
+  code.op(OP.end, OP.end);
+  code.get(out).get(best).mem(OP.f64Store, 3);
+  code.get(out).get(bestAxis).mem(OP.i32Store, 2, 8).get(out).get(bestPlane).mem(OP.i32Store, 2, 12);
+  code.get(out).get(bestLeftN).mem(OP.i32Store, 2, 16).get(out).get(binned).mem(OP.i32Store, 2, 20);
+  return {
+    name: 'sweep', params: [I32, I32, I32, I32, I32, F64, I32, I32], results: [],
+    locals: [I32, I32, I32, I32, I32, I32, V128, V128, F64, F64, I32, I32, I32, I32, F64, F64, F64, I32, I32], body: code,
+  };
+}
+
+/**
+ * The module's bytes, importing `env.memory`: shared (any maximum up to 4 GiB) for the parallel
+ * build, plain otherwise (an import's kind must match the memory it is instantiated with).
+ */
+export function bvhWasmModuleBytes(shared: boolean): Uint8Array {
+  return encodeModule([binFunction(), partitionFunction(), partitionSampledFunction(), scanFunction(), sweepFunction()], shared);
+}
+
+const compiled = new Map<boolean, WebAssembly.Module | null>();
+
+/**
+ * The compiled module (cached per thread), or null where WebAssembly, its SIMD or (for `shared`)
+ * shared memory is unavailable, or a Content Security Policy forbids compiling it.
+ */
+export function compiledBvhWasm(shared: boolean): WebAssembly.Module | null {
+  if (!compiled.has(shared)) {
+    let module: WebAssembly.Module | null = null;
+    try {
+      if (typeof WebAssembly === 'object' && (!shared || typeof SharedArrayBuffer === 'function')) {
+        module = new WebAssembly.Module(bvhWasmModuleBytes(shared) as Uint8Array<ArrayBuffer>);
+      }
+    } catch {
+      module = null;
+    }
+    compiled.set(shared, module);
+  }
+  return compiled.get(shared)!;
+}
+
+/** Byte offsets of one build's arrays in WebAssembly memory (see `wasmSlotLayout`). */
+export interface WasmSlotLayout {
+  /** Per-thread scratch (bins and results), `scratchBytes` apart from 0. */
+  scratchBytes: number;
+  boxes0: number;
+  boxes1: number;
+  ids0: number;
+  ids1: number;
+  pages: number;
+}
+
+/**
+ * [scratch x threads][boxes0: n * 32][boxes1: n * 32][ids0: n * 4][ids1: n * 4], in 64 KiB pages;
+ * null beyond the 4 GiB of a 32-bit memory.
+ */
+export function wasmSlotLayout(n: number, threads: number, binCount: number): WasmSlotLayout | null {
+  const binStride = Math.max(binCount, 32);
+  const scratchBytes = Math.ceil((3 * binStride * 36 + 128 + 32 + binStride * 12) / 64) * 64;
+  const boxes0 = threads * scratchBytes;
+  const boxes1 = boxes0 + n * 32;
+  const ids0 = boxes1 + n * 32;
+  const ids1 = ids0 + n * 4;
+  const pages = Math.max(1, Math.ceil((ids1 + n * 4) / 65536));
+  if (pages > 65536) return null;
+  return { scratchBytes, boxes0, boxes1, ids0, ids1, pages };
+}
