@@ -35,6 +35,12 @@ export interface BvhBuildOptions {
   leafSizeCap?: number;
   /** Depth limit (root = 0), at most and by default BVH_MAX_DEPTH. */
   maxDepth?: number;
+  /**
+   * Run the hot loops as WebAssembly SIMD where the engine allows it (default true). The tree is the
+   * same either way, bit for bit; false keeps everything in JS, e.g. under a Content Security Policy
+   * without 'wasm-unsafe-eval', where even the attempt to compile would be reported as a violation.
+   */
+  wasm?: boolean;
 }
 
 export interface BvhAsyncBuildOptions extends BvhBuildOptions {
@@ -82,7 +88,7 @@ export const BVH_PARALLEL_MIN_TRIANGLES = 50_000;
  * for the whole build (about a second per million triangles); prefer `buildBvhAsync` for large meshes.
  */
 export function buildBvh(positions: Float32Array, options?: BvhBuildOptions): BvhBuildResult {
-  const state = createSerialBuildState(positions, resolveBuildParams(positions, options));
+  const state = createSerialBuildState(positions, resolveBuildParams(positions, options), options?.wasm ?? true);
   state.step(Infinity);
   return state.finish();
 }
@@ -99,7 +105,7 @@ function eventLoopYield(): YieldFn {
 
 async function buildTimeSliced(positions: Float32Array, options: BvhAsyncBuildOptions): Promise<BvhBuildResult> {
   const { sliceMs = 8, signal, onProgress } = options;
-  const state = createSerialBuildState(positions, resolveBuildParams(positions, options));
+  const state = createSerialBuildState(positions, resolveBuildParams(positions, options), options.wasm ?? true);
   const yieldNow = eventLoopYield();
   let yieldedMs = 0;
   for (;;) {
@@ -134,7 +140,9 @@ async function tryWorkers(positions: Float32Array, options: BvhAsyncBuildOptions
   options.signal?.throwIfAborted();
   if (!pool) return null;
   try {
-    const result = await buildOnWorkers(positions, params, pool, { sliceMs: options.sliceMs ?? 8, signal: options.signal, onProgress: options.onProgress });
+    const result = await buildOnWorkers(positions, params, pool, {
+      sliceMs: options.sliceMs ?? 8, signal: options.signal, onProgress: options.onProgress, wasm: options.wasm ?? true,
+    });
     options.onProgress?.(1);
     return result;
   } catch (error) {

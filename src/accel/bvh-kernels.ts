@@ -28,6 +28,8 @@ export interface BvhBuildParams {
   binCount: number;
   leafSizeCap: number;
   maxDepth: number;
+  /** Nodes of at least 2 * sampleSize triangles bin a strided sample of sampleSize..2*sampleSize of them. */
+  sampleSize: number;
 }
 
 /** The two slot buffers (see the layout above); views may cover a sub-range of the whole. */
@@ -87,8 +89,7 @@ export function createBvhKernels() {
   const LEAF = 0;
   const MEDIAN = 1;
   const SAH = 2;
-  /** Nodes of at least 2 * SAMPLE_SIZE triangles bin a strided sample of them (see processNode). */
-  const SAMPLE_SIZE = 8192;
+  /** Bins of sampled nodes (see `split`). */
   const SAMPLE_BINS = 32;
 
   function halfArea(minX: number, minY: number, minZ: number, maxX: number, maxY: number, maxZ: number): number {
@@ -608,10 +609,11 @@ export function createBvhKernels() {
       const odd = (depth & 1) === 1;
       const srcBoxes = odd ? slots.boxes1 : slots.boxes0, srcIds = odd ? slots.ids1 : slots.ids0;
       const dstBoxes = odd ? slots.boxes0 : slots.boxes1, dstIds = odd ? slots.ids0 : slots.ids1;
-      // Large nodes choose their plane from an evenly strided sample of SAMPLE_SIZE..2*SAMPLE_SIZE
-      // triangles in SAMPLE_BINS bins; the sample's bins hold real triangles of both sides, so the
-      // split is never empty. Smaller nodes bin every triangle, in at most one bin per triangle.
-      const stride = (count / SAMPLE_SIZE) | 0;
+      // Large nodes choose their plane from an evenly strided sample of sampleSize..2*sampleSize
+      // triangles in SAMPLE_BINS bins (the partition still moves every triangle and measures both
+      // sides exactly); the sample's bins hold real triangles of both sides, so the split is never
+      // empty. Smaller nodes bin every triangle, in at most one bin per triangle.
+      const stride = (count / params.sampleSize) | 0;
       const sampled = stride >= 2;
       const step = sampled ? stride : 1;
       const bins = sampled ? SAMPLE_BINS : count < binCount ? count : binCount;

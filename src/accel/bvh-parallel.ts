@@ -42,6 +42,8 @@ interface TopNode {
 
 export interface ParallelRunOptions {
   sliceMs: number;
+  /** Use the WebAssembly loops where available (default true). */
+  wasm?: boolean;
   signal?: AbortSignal;
   onProgress?: (fraction: number) => void;
 }
@@ -77,7 +79,7 @@ export async function buildOnWorkers(
     sharedPositions.set(positions);
   }
   // Slots in one shared WebAssembly memory (the SIMD loops) or, without it, in SharedArrayBuffers.
-  const module = compiledBvhWasm(true);
+  const module = run.wasm === false ? null : compiledBvhWasm(true);
   const layout = module ? wasmSlotLayout(n, workerCount, params.binCount) : null;
   let memory: WebAssembly.Memory | undefined;
   try {
@@ -307,7 +309,7 @@ async function buildOnOneWorker(
 ): Promise<BvhBuildResult> {
   const copy = positions.slice();
   const n = positions.length / 9;
-  const module = compiledBvhWasm(false);
+  const module = run.wasm === false ? null : compiledBvhWasm(false);
   const layout = module ? wasmSlotLayout(n, 1, params.binCount) : null;
   const reply = await new Promise<BvhWorkerReply>((resolve, reject) => {
     const onAbort = (): void => reject(run.signal!.reason);
