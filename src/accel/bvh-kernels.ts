@@ -580,7 +580,8 @@ export function createBvhKernels() {
     const sweepAt = resultsAt + 128;
     const sweepCost = wasm ? new Float64Array(wasm.buffer, sweepAt, 1) : new Float64Array(1);
     const sweepInts = wasm ? new Int32Array(wasm.buffer, sweepAt + 8, 4) : new Int32Array(4);
-    const sweepTmp = sweepAt + 32;
+    const sweepTmp = sweepAt + 96;
+    const sweepBoxes = wasm ? new Float32Array(wasm.buffer, sweepAt + 32, 16) : new Float32Array(16);
     const swept = new Float64Array(5);
     const rightArea = new Float64Array(binStride);
     const rightN = new Int32Array(binStride);
@@ -620,11 +621,11 @@ export function createBvhKernels() {
       binScales(cb, cbAt, bins, scale);
       let decision = count > leafSizeCap ? MEDIAN : LEAF;
       if (scale[0] !== 0 || scale[1] !== 0 || scale[2] !== 0) {
-        resetBins(binN, binB, bins, binStride);
         if (wasm) {
           const p = srcBoxes.byteOffset + start * 32;
           wasm.exports.bin(p, p + count * 32, step * 32, scale[0]!, scale[1]!, scale[2]!, scale[3]!, scale[4]!, scale[5]!, bins - 1, bins - 1, binB.byteOffset, binN.byteOffset, binStride);
         } else {
+          resetBins(binN, binB, bins, binStride);
           binRange(srcBoxes, start, start + count, step, scale, bins, binStride, binN, binB);
         }
         const parentArea = halfArea(box[boxAt]!, box[boxAt + 1]!, box[boxAt + 2]!, box[boxAt + 3]!, box[boxAt + 4]!, box[boxAt + 5]!);
@@ -665,7 +666,17 @@ export function createBvhKernels() {
         mid = medianSplit(dstBoxes, dstIds, dstBoxes, dstIds, start, count, cb, cbAt);
       } else if (decision === SAH && withinDepthBudget(count, choice[2]!, depth, params)) {
         mid = start + choice[2]!;
-        binUnion(binN, binB, bins, binStride, axis, plane, sides);
+        if (wasm) {
+          // The sweep kept the best split's boxes (the unions of its bins).
+          for (let c = 0; c < 3; c++) {
+            sides[c] = sweepBoxes[c]!;
+            sides[3 + c] = sweepBoxes[4 + c]!;
+            sides[6 + c] = sweepBoxes[8 + c]!;
+            sides[9 + c] = sweepBoxes[12 + c]!;
+          }
+        } else {
+          binUnion(binN, binB, bins, binStride, axis, plane, sides);
+        }
         if (wasm) {
           wasm.exports.partition(
             srcBoxes.byteOffset + start * 32, srcBoxes.byteOffset + (start + count) * 32,

@@ -26,6 +26,8 @@ import type { BvhWorkerPool, BvhWorkerReply } from './bvh-worker-pool.ts';
 
 /** Subtree jobs per worker the top splits aim for (more balances better, costs more round trips). */
 const TASKS_PER_WORKER = 4;
+/** Floats copied into shared memory between two looks at the clock. */
+const COPY_CHUNK = 1 << 18;
 /** Nodes at most this large are never split as single jobs (a round trip costs more than their split). */
 const MIN_SPLIT_JOB = 32768;
 
@@ -76,7 +78,16 @@ export async function buildOnWorkers(
   let sharedPositions = positions;
   if (!(positions.buffer instanceof SharedArrayBuffer)) {
     sharedPositions = new Float32Array(new SharedArrayBuffer(positions.byteLength));
-    sharedPositions.set(positions);
+    // In pieces, yielding between slices: 1M triangles are 36 MB.
+    let sliceStart = performance.now();
+    for (let i = 0; i < positions.length; i += COPY_CHUNK) {
+      sharedPositions.set(positions.subarray(i, i + COPY_CHUNK), i);
+      if (performance.now() - sliceStart > run.sliceMs) {
+        await yieldToLoop();
+        run.signal?.throwIfAborted();
+        sliceStart = performance.now();
+      }
+    }
   }
   // Slots in one shared WebAssembly memory (the SIMD loops) or, without it, in SharedArrayBuffers.
   const module = run.wasm === false ? null : compiledBvhWasm(true);

@@ -198,10 +198,22 @@ function binIndex(code: Code, f: number, last: number, lastI: number): void {
 const INF = Infinity;
 
 function binFunction(): FunctionDef {
-  // (p, end, step, k0, k1, k2, m0, m1, m2, last, lastI, binBase, cntBase, binStride)
+  // (p, end, step, k0, k1, k2, m0, m1, m2, last, lastI, binBase, cntBase, binStride): empties bins
+  // 0..lastI of each axis, then bins every slot of [p, end) (`step` bytes apart) on all three axes.
   const [p, end, step, k0, k1, k2, m0, m1, m2, last, lastI, binBase, cntBase, binStride] = [0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13];
   const [mn, mx, c, f, q, addr, b1, b2, n1, n2] = [14, 15, 16, 17, 18, 19, 20, 21, 22, 23];
   const code = new Code();
+  // Empty the bins first: (min +inf, max -inf, count 0) for bins 0..lastI of each axis.
+  for (let axis = 0; axis < 3; axis++) {
+    code.i32(0).set(q);
+    code.op(OP.loop, 0x40);
+    code.get(binStride).i32(axis).op(OP.i32Mul).get(q).op(OP.i32Add).set(addr);
+    code.get(addr).i32(5).op(OP.i32Shl).get(binBase).op(OP.i32Add).vconstF32(INF, INF, INF, INF).vstore(0);
+    code.get(addr).i32(5).op(OP.i32Shl).get(binBase).op(OP.i32Add).vconstF32(-INF, -INF, -INF, -INF).vstore(16);
+    code.get(addr).i32(2).op(OP.i32Shl).get(cntBase).op(OP.i32Add).i32(0).mem(OP.i32Store, 2);
+    code.get(q).i32(1).op(OP.i32Add).tee(q).get(lastI).op(0x4c /* i32.le_s */).op(OP.brIf, 0);
+    code.op(OP.end);
+  }
   // Axis bases: bins at binBase + a * binStride * 32, counts at cntBase + a * binStride * 4.
   code.get(binBase).get(binStride).i32(5).op(OP.i32Shl).op(OP.i32Add).tee(b1)
     .get(binStride).i32(5).op(OP.i32Shl).op(OP.i32Add).set(b2);
@@ -315,13 +327,17 @@ function halfArea(code: Code, mn: number, mx: number, dx: number, dy: number, dz
 
 function sweepFunction(): FunctionDef {
   // (binBase, cntBase, bins, binStride, mask, parentArea, tmp, out): the SAH plane search of
-  // bvh-kernels' sweepBins; out: f64 best cost, i32 axis, plane, left count, binned count.
+  // bvh-kernels' sweepBins; out: f64 best cost, i32 axis, plane, left count, binned count, then at
+  // out + 32 the best split's left box (min, max vectors) and right box. tmp: f64 suffix areas,
+  // i32 suffix counts, then suffix boxes (32 bytes per bin), binStride of each.
   const [binBase, cntBase, bins, binStride, mask, parentArea, tmp, out] = [0, 1, 2, 3, 4, 5, 6, 7];
   // Local 11 is unused (kept so the indices below stay as declared).
   const [a, b, q, rn, ln, vmin, vmax, cost, best, bestAxis, bestPlane, bestLeftN, binned, dx, dy, dz, rnb, axisBase] =
     [8, 9, 10, 12, 13, 14, 15, 16, 17, 18, 19, 20, 21, 22, 23, 24, 25, 26];
+  const [bestLmin, bestLmax, bestRmin, bestRmax, boxes] = [27, 28, 29, 30, 31];
   const code = new Code();
   code.f64(INF).set(best).i32(-1).set(bestAxis);
+  code.get(binStride).i32(12).op(OP.i32Mul).get(tmp).op(OP.i32Add).set(boxes);
   code.op(OP.block, 0x40).op(OP.loop, 0x40); // axes
   code.get(mask).get(a).op(0x75 /* i32.shr_s */).i32(1).op(OP.i32And).op(OP.if, 0x40);
   code.get(a).get(binStride).op(OP.i32Mul).set(axisBase);
@@ -333,6 +349,7 @@ function sweepFunction(): FunctionDef {
   code.get(rn).get(q).i32(2).op(OP.i32Shl).get(cntBase).op(OP.i32Add).mem(OP.i32Load, 2).op(OP.i32Add).set(rn);
   code.get(q).i32(5).op(OP.i32Shl).get(binBase).op(OP.i32Add).set(q);
   code.get(vmin).get(q).vload(0).simd(SIMD.f32x4Pmin).set(vmin).get(vmax).get(q).vload(16).simd(SIMD.f32x4Pmax).set(vmax);
+  code.get(b).i32(5).op(OP.i32Shl).get(boxes).op(OP.i32Add).tee(q).get(vmin).vstore(0).get(q).get(vmax).vstore(16);
   code.get(b).i32(3).op(OP.i32Shl).get(tmp).op(OP.i32Add);
   halfArea(code, vmin, vmax, dx, dy, dz);
   code.f64(0).get(rn).i32(0).op(OP.i32GtS).op(OP.select).mem(OP.f64Store, 3);
@@ -356,6 +373,8 @@ function sweepFunction(): FunctionDef {
   code.get(b).i32(1).op(OP.i32Add).i32(3).op(OP.i32Shl).get(tmp).op(OP.i32Add).mem(OP.f64Load, 3).get(rnb).op(OP.f64ConvertI32S).op(OP.f64Mul);
   code.op(OP.f64Add).op(OP.f64Add).tee(cost).get(best).op(OP.f64Lt).op(OP.if, 0x40);
   code.get(cost).set(best).get(a).set(bestAxis).get(b).i32(1).op(OP.i32Add).set(bestPlane).get(ln).set(bestLeftN);
+  code.get(vmin).set(bestLmin).get(vmax).set(bestLmax);
+  code.get(bestPlane).i32(5).op(OP.i32Shl).get(boxes).op(OP.i32Add).tee(q).vload(0).set(bestRmin).get(q).vload(16).set(bestRmax);
   code.op(OP.end, OP.end);
   code.get(b).i32(1).op(OP.i32Add).tee(b).get(bins).i32(1).op(OP.i32Sub).op(OP.i32LtS).op(OP.brIf, 0);
   code.op(OP.end, OP.end);
@@ -365,9 +384,10 @@ function sweepFunction(): FunctionDef {
   code.get(out).get(best).mem(OP.f64Store, 3);
   code.get(out).get(bestAxis).mem(OP.i32Store, 2, 8).get(out).get(bestPlane).mem(OP.i32Store, 2, 12);
   code.get(out).get(bestLeftN).mem(OP.i32Store, 2, 16).get(out).get(binned).mem(OP.i32Store, 2, 20);
+  code.get(out).get(bestLmin).vstore(32).get(out).get(bestLmax).vstore(48).get(out).get(bestRmin).vstore(64).get(out).get(bestRmax).vstore(80);
   return {
     name: 'sweep', params: [I32, I32, I32, I32, I32, F64, I32, I32], results: [],
-    locals: [I32, I32, I32, I32, I32, I32, V128, V128, F64, F64, I32, I32, I32, I32, F64, F64, F64, I32, I32], body: code,
+    locals: [I32, I32, I32, I32, I32, I32, V128, V128, F64, F64, I32, I32, I32, I32, F64, F64, F64, I32, I32, V128, V128, V128, V128, I32], body: code,
   };
 }
 
@@ -417,7 +437,8 @@ export interface WasmSlotLayout {
  */
 export function wasmSlotLayout(n: number, threads: number, binCount: number): WasmSlotLayout | null {
   const binStride = Math.max(binCount, 32);
-  const scratchBytes = Math.ceil((3 * binStride * 36 + 128 + 32 + binStride * 12) / 64) * 64;
+  // Bins (32 bytes) and counts (4) per axis, 8 result vectors, the sweep's result (96) and suffix arrays (44 per bin).
+  const scratchBytes = Math.ceil((3 * binStride * 36 + 128 + 96 + binStride * 44) / 64) * 64;
   const boxes0 = threads * scratchBytes;
   const boxes1 = boxes0 + n * 32;
   const ids0 = boxes1 + n * 32;
