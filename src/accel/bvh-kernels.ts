@@ -353,7 +353,10 @@ export function createBvhKernels() {
       childBounds[3 + c] = childBounds[9 + c] = -Infinity;
     }
     const base = axis * binStride;
-    for (let b = 0; b < bins; b++) {
+    // Left side in ascending, right side in descending bin order, as the sweep's prefix and suffix
+    // unions run: with ties between -0 and +0 the first one seen stays, and the trees must match.
+    for (let i = 0; i < bins; i++) {
+      const b = i < plane ? i : bins - 1 - (i - plane);
       if (binN[base + b] === 0) continue;
       const t = b < plane ? 0 : 6;
       const q = (base + b) * 8;
