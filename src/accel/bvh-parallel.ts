@@ -74,21 +74,10 @@ export async function buildOnWorkers(
   const n = positions.length / 9;
   const workerCount = pool.size();
   const build = nextBuildId++;
-  // Shared inputs: the positions (unless they already live in shared memory), both slot buffers.
-  let sharedPositions = positions;
-  if (!(positions.buffer instanceof SharedArrayBuffer)) {
-    sharedPositions = new Float32Array(new SharedArrayBuffer(positions.byteLength));
-    // In pieces, yielding between slices: 1M triangles are 36 MB.
-    let sliceStart = performance.now();
-    for (let i = 0; i < positions.length; i += COPY_CHUNK) {
-      sharedPositions.set(positions.subarray(i, i + COPY_CHUNK), i);
-      if (performance.now() - sliceStart > run.sliceMs) {
-        await yieldToLoop();
-        run.signal?.throwIfAborted();
-        sliceStart = performance.now();
-      }
-    }
-  }
+  // Shared inputs: the positions (copied below, unless they already live in shared memory) and
+  // both slot buffers.
+  const copyPositions = !(positions.buffer instanceof SharedArrayBuffer);
+  const sharedPositions = copyPositions ? new Float32Array(new SharedArrayBuffer(positions.byteLength)) : positions;
   // Slots in one shared WebAssembly memory (the SIMD loops) or, without it, in SharedArrayBuffers.
   const module = run.wasm === false ? null : compiledBvhWasm(true);
   const layout = module ? wasmSlotLayout(n, workerCount, params.binCount) : null;
@@ -114,19 +103,31 @@ export async function buildOnWorkers(
     ? { op: 'begin', build, positions: sharedPositions, memory, module, layout, abort, params }
     : { op: 'begin', build, positions: sharedPositions, slots, abort, params };
   try {
-    await Promise.all(Array.from({ length: workerCount }, (_, w) => pool.request(w, { ...begin, scratch: w * (layout?.scratchBytes ?? 0) })));
-    aborted();
+    const begun = Array.from({ length: workerCount }, (_, w) => pool.request(w, { ...begin, scratch: w * (layout?.scratchBytes ?? 0) }));
 
-    // 1. Prepass, one chunk per worker; min/max merge exactly, so the root bounds equal the serial ones.
+    // 1. Prepass, one chunk per worker, each started as soon as its positions are in shared memory
+    //    (copied in slices, yielding in between: 1M triangles are 36 MB). Min/max merge exactly, so
+    //    the root bounds equal the serial ones.
     const k = bvhKernels();
     const rootBounds = new Float64Array(12);
     k.emptyBounds(rootBounds, 0);
     const chunk = Math.ceil(n / workerCount);
-    const parts = await Promise.all(
-      Array.from({ length: workerCount }, (_, w) =>
-        pool.request(w, { op: 'boxes', build, from: Math.min(n, w * chunk), to: Math.min(n, (w + 1) * chunk) })),
-    );
-    for (const part of parts) k.mergeBounds(rootBounds, 0, part.bounds as Float64Array, 0);
+    const prepass: Array<Promise<BvhWorkerReply>> = [];
+    let sliceStart = performance.now();
+    for (let w = 0; w < workerCount; w++) {
+      const from = Math.min(n, w * chunk), to = Math.min(n, (w + 1) * chunk);
+      for (let i = from * 9; copyPositions && i < to * 9; i += COPY_CHUNK) {
+        sharedPositions.set(positions.subarray(i, Math.min(to * 9, i + COPY_CHUNK)), i);
+        if (performance.now() - sliceStart > run.sliceMs) {
+          await yieldToLoop();
+          aborted();
+          sliceStart = performance.now();
+        }
+      }
+      prepass.push(pool.request(w, { op: 'boxes', build, from, to }));
+    }
+    await Promise.all(begun);
+    for (const part of await Promise.all(prepass)) k.mergeBounds(rootBounds, 0, part.bounds as Float64Array, 0);
     aborted();
 
     // 2 + 3. Top splits and subtree jobs, largest node first, on whichever worker is idle.
