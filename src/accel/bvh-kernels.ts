@@ -586,6 +586,9 @@ export function createBvhKernels() {
     const sweepTmp = sweepAt + 96;
     const sweepBoxes = wasm ? new Float32Array(wasm.buffer, sweepAt + 32, 16) : new Float32Array(16);
     const swept = new Float64Array(5);
+    // f64 parameters of the WebAssembly calls (k0, k1, k2, m0, m1, m2, last bin, parent area).
+    const paramsAt = sweepTmp + binStride * 44;
+    const wasmParams = wasm ? new Float64Array(wasm.buffer, paramsAt, 8) : new Float64Array(8);
     const rightArea = new Float64Array(binStride);
     const rightN = new Int32Array(binStride);
     const scale = new Float64Array(6);
@@ -626,7 +629,9 @@ export function createBvhKernels() {
       if (scale[0] !== 0 || scale[1] !== 0 || scale[2] !== 0) {
         if (wasm) {
           const p = srcBoxes.byteOffset + start * 32;
-          wasm.exports.bin(p, p + count * 32, step * 32, scale[0]!, scale[1]!, scale[2]!, scale[3]!, scale[4]!, scale[5]!, bins - 1, bins - 1, binB.byteOffset, binN.byteOffset, binStride);
+          for (let c = 0; c < 6; c++) wasmParams[c] = scale[c]!;
+          wasmParams[6] = bins - 1;
+          wasm.exports.bin(p, p + count * 32, step * 32, bins - 1, binB.byteOffset, binN.byteOffset, binStride, paramsAt);
         } else {
           resetBins(binN, binB, bins, binStride);
           binRange(srcBoxes, start, start + count, step, scale, bins, binStride, binN, binB);
@@ -634,7 +639,8 @@ export function createBvhKernels() {
         const parentArea = halfArea(box[boxAt]!, box[boxAt + 1]!, box[boxAt + 2]!, box[boxAt + 3]!, box[boxAt + 4]!, box[boxAt + 5]!);
         if (wasm) {
           const mask = (scale[0] !== 0 ? 1 : 0) | (scale[1] !== 0 ? 2 : 0) | (scale[2] !== 0 ? 4 : 0);
-          wasm.exports.sweep(binB.byteOffset, binN.byteOffset, bins, binStride, mask, parentArea, sweepTmp, sweepAt);
+          wasmParams[7] = parentArea;
+          wasm.exports.sweep(binB.byteOffset, binN.byteOffset, bins, binStride, mask, sweepTmp, sweepAt, paramsAt);
           swept[0] = sweepCost[0]!;
           swept[1] = sweepInts[0]!;
           swept[2] = sweepInts[1]!;
@@ -654,7 +660,7 @@ export function createBvhKernels() {
             srcBoxes.byteOffset + start * 32, srcBoxes.byteOffset + (start + count) * 32,
             dstBoxes.byteOffset + start * 32, dstBoxes.byteOffset + (start + count - 1) * 32,
             srcIds.byteOffset + start * 4, dstIds.byteOffset + start * 4, dstIds.byteOffset + (start + count - 1) * 4,
-            axis * 4, scale[axis]!, scale[3 + axis]!, bins - 1, bins - 1, plane, resultsAt,
+            axis * 4, bins - 1, plane, resultsAt, paramsAt,
           );
           mid = start + left;
           readVectors(0, out, 0);
@@ -685,7 +691,7 @@ export function createBvhKernels() {
             srcBoxes.byteOffset + start * 32, srcBoxes.byteOffset + (start + count) * 32,
             dstBoxes.byteOffset + start * 32, dstBoxes.byteOffset + mid * 32,
             srcIds.byteOffset + start * 4, dstIds.byteOffset + start * 4, dstIds.byteOffset + mid * 4,
-            axis * 4, scale[axis]!, scale[3 + axis]!, bins - 1, bins - 1, plane, resultsAt,
+            axis * 4, bins - 1, plane, resultsAt, paramsAt,
           );
           readVectors(0, cbs, 0);
           readVectors(2, cbs, 6);
@@ -711,7 +717,10 @@ export function createBvhKernels() {
 
   /** triangleOrder is buffer 0; a leaf at an odd depth holds its ids in buffer 1 and copies them. */
   function settleLeaf(slots: SlotBuffers, start: number, count: number, depth: number): void {
-    if (depth & 1) slots.ids0.set(slots.ids1.subarray(start, start + count), start);
+    if ((depth & 1) === 0) return;
+    // A plain loop: leaves are small, and a subarray view per leaf would keep the GC busy.
+    const from = slots.ids1, to = slots.ids0;
+    for (let i = start, end = start + count; i < end; i++) to[i] = from[i]!;
   }
 
   /**

@@ -197,12 +197,30 @@ function binIndex(code: Code, f: number, last: number, lastI: number): void {
 
 const INF = Infinity;
 
+/**
+ * f64 parameters come through memory, not arguments: a JS call passing doubles to WebAssembly may box
+ * each one, and the build makes hundreds of thousands of calls. Layout at `prm`: k0, k1, k2, m0, m1,
+ * m2, last bin (as f64), parent half area.
+ */
+function loadParams(code: Code, prm: number, locals: number[]): void {
+  locals.forEach((local, i) => code.get(prm).mem(OP.f64Load, 3, i * 8).set(local));
+}
+
+/** k and m of the axis whose byte offset in a slot (axis * 4) is in local `axisOff`, and `last`. */
+function loadAxisParams(code: Code, prm: number, axisOff: number, k: number, m: number, last: number): void {
+  code.get(prm).get(axisOff).i32(1).op(OP.i32Shl).op(OP.i32Add).mem(OP.f64Load, 3, 0).set(k);
+  code.get(prm).get(axisOff).i32(1).op(OP.i32Shl).op(OP.i32Add).mem(OP.f64Load, 3, 24).set(m);
+  code.get(prm).mem(OP.f64Load, 3, 48).set(last);
+}
+
 function binFunction(): FunctionDef {
-  // (p, end, step, k0, k1, k2, m0, m1, m2, last, lastI, binBase, cntBase, binStride): empties bins
-  // 0..lastI of each axis, then bins every slot of [p, end) (`step` bytes apart) on all three axes.
-  const [p, end, step, k0, k1, k2, m0, m1, m2, last, lastI, binBase, cntBase, binStride] = [0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13];
-  const [mn, mx, c, f, q, addr, b1, b2, n1, n2] = [14, 15, 16, 17, 18, 19, 20, 21, 22, 23];
+  // (p, end, step, lastI, binBase, cntBase, binStride, prm): empties bins 0..lastI of each axis, then
+  // bins every slot of [p, end) (`step` bytes apart) on all three axes; prm: the f64 parameters.
+  const [p, end, step, lastI, binBase, cntBase, binStride, prm] = [0, 1, 2, 3, 4, 5, 6, 7];
+  const [k0, k1, k2, m0, m1, m2, last] = [8, 9, 10, 11, 12, 13, 14];
+  const [mn, mx, c, f, q, addr, b1, b2, n1, n2] = [15, 16, 17, 18, 19, 20, 21, 22, 23, 24];
   const code = new Code();
+  loadParams(code, prm, [k0, k1, k2, m0, m1, m2, last]);
   // Empty the bins first: (min +inf, max -inf, count 0) for bins 0..lastI of each axis.
   for (let axis = 0; axis < 3; axis++) {
     code.i32(0).set(q);
@@ -234,14 +252,16 @@ function binFunction(): FunctionDef {
   });
   code.get(p).get(step).op(OP.i32Add).tee(p).get(end).op(OP.i32LtU).op(OP.brIf, 0);
   code.op(OP.end, OP.end);
-  return { name: 'bin', params: [I32, I32, I32, F64, F64, F64, F64, F64, F64, F64, I32, I32, I32, I32], results: [], locals: [V128, V128, V128, F64, I32, I32, I32, I32, I32, I32], body: code };
+  return { name: 'bin', params: [I32, I32, I32, I32, I32, I32, I32, I32], results: [], locals: [F64, F64, F64, F64, F64, F64, F64, V128, V128, V128, F64, I32, I32, I32, I32, I32, I32], body: code };
 }
 
 function partitionFunction(): FunctionDef {
-  // (p, end, dl, dr, ip, il, ir, axisOff, k, m, last, lastI, plane, out)
-  const [p, end, dl, dr, ip, il, ir, axisOff, k, m, last, lastI, plane, out] = [0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13];
-  const [mn, mx, c, lmin, lmax, rmin, rmax, f, a] = [14, 15, 16, 17, 18, 19, 20, 21, 22];
+  // (p, end, dl, dr, ip, il, ir, axisOff, lastI, plane, out, prm)
+  const [p, end, dl, dr, ip, il, ir, axisOff, lastI, plane, out, prm] = [0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11];
+  const [k, m, last] = [12, 13, 14];
+  const [mn, mx, c, lmin, lmax, rmin, rmax, f, a] = [15, 16, 17, 18, 19, 20, 21, 22, 23];
   const code = new Code();
+  loadAxisParams(code, prm, axisOff, k, m, last);
   code.vconstF32(INF, INF, INF, INF).tee(lmin).set(rmin).vconstF32(-INF, -INF, -INF, -INF).tee(lmax).set(rmax);
   code.op(OP.block, 0x40).get(p).get(end).op(OP.i32GeU).op(OP.brIf, 0);
   code.op(OP.loop, 0x40);
@@ -263,14 +283,16 @@ function partitionFunction(): FunctionDef {
   code.get(p).i32(32).op(OP.i32Add).tee(p).get(end).op(OP.i32LtU).op(OP.brIf, 0);
   code.op(OP.end, OP.end);
   code.get(out).get(lmin).vstore(0).get(out).get(lmax).vstore(16).get(out).get(rmin).vstore(32).get(out).get(rmax).vstore(48);
-  return { name: 'partition', params: [I32, I32, I32, I32, I32, I32, I32, I32, F64, F64, F64, I32, I32, I32], results: [], locals: [V128, V128, V128, V128, V128, V128, V128, F64, I32], body: code };
+  return { name: 'partition', params: [I32, I32, I32, I32, I32, I32, I32, I32, I32, I32, I32, I32], results: [], locals: [F64, F64, F64, V128, V128, V128, V128, V128, V128, V128, F64, I32], body: code };
 }
 
 function partitionSampledFunction(): FunctionDef {
-  // (p, end, dl, dr, ip, il, ir, axisOff, k, m, last, lastI, plane, out) -> left count; dr/ir address the LAST slot/id.
-  const [p, end, dl, dr, ip, il, ir, axisOff, k, m, last, lastI, plane, out] = [0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13];
-  const [mn, mx, c, lbmin, lbmax, lcmin, lcmax, rbmin, rbmax, rcmin, rcmax, f, a, nl] = [14, 15, 16, 17, 18, 19, 20, 21, 22, 23, 24, 25, 26, 27];
+  // (p, end, dl, dr, ip, il, ir, axisOff, lastI, plane, out, prm) -> left count; dr/ir address the LAST slot/id.
+  const [p, end, dl, dr, ip, il, ir, axisOff, lastI, plane, out, prm] = [0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11];
+  const [k, m, last] = [12, 13, 14];
+  const [mn, mx, c, lbmin, lbmax, lcmin, lcmax, rbmin, rbmax, rcmin, rcmax, f, a, nl] = [15, 16, 17, 18, 19, 20, 21, 22, 23, 24, 25, 26, 27, 28];
   const code = new Code();
+  loadAxisParams(code, prm, axisOff, k, m, last);
   code.vconstF32(INF, INF, INF, INF).tee(lbmin).tee(lcmin).tee(rbmin).set(rcmin);
   code.vconstF32(-INF, -INF, -INF, -INF).tee(lbmax).tee(lcmax).tee(rbmax).set(rcmax);
   code.op(OP.block, 0x40).get(p).get(end).op(OP.i32GeU).op(OP.brIf, 0);
@@ -297,7 +319,7 @@ function partitionSampledFunction(): FunctionDef {
   code.get(out).get(lbmin).vstore(0).get(out).get(lbmax).vstore(16).get(out).get(lcmin).vstore(32).get(out).get(lcmax).vstore(48);
   code.get(out).get(rbmin).vstore(64).get(out).get(rbmax).vstore(80).get(out).get(rcmin).vstore(96).get(out).get(rcmax).vstore(112);
   code.get(nl);
-  return { name: 'partitionSampled', params: [I32, I32, I32, I32, I32, I32, I32, I32, F64, F64, F64, I32, I32, I32], results: [I32], locals: [V128, V128, V128, V128, V128, V128, V128, V128, V128, V128, V128, F64, I32, I32], body: code };
+  return { name: 'partitionSampled', params: [I32, I32, I32, I32, I32, I32, I32, I32, I32, I32, I32, I32], results: [I32], locals: [F64, F64, F64, V128, V128, V128, V128, V128, V128, V128, V128, V128, V128, V128, F64, I32, I32], body: code };
 }
 
 function scanFunction(): FunctionDef {
@@ -326,16 +348,17 @@ function halfArea(code: Code, mn: number, mx: number, dx: number, dy: number, dz
 }
 
 function sweepFunction(): FunctionDef {
-  // (binBase, cntBase, bins, binStride, mask, parentArea, tmp, out): the SAH plane search of
+  // (binBase, cntBase, bins, binStride, mask, tmp, out, prm): the SAH plane search of
   // bvh-kernels' sweepBins; out: f64 best cost, i32 axis, plane, left count, binned count, then at
   // out + 32 the best split's left box (min, max vectors) and right box. tmp: f64 suffix areas,
   // i32 suffix counts, then suffix boxes (32 bytes per bin), binStride of each.
-  const [binBase, cntBase, bins, binStride, mask, parentArea, tmp, out] = [0, 1, 2, 3, 4, 5, 6, 7];
-  // Local 11 is unused (kept so the indices below stay as declared).
+  const [binBase, cntBase, bins, binStride, mask, tmp, out, prm] = [0, 1, 2, 3, 4, 5, 6, 7];
+  const parentArea = 8;
   const [a, b, q, rn, ln, vmin, vmax, cost, best, bestAxis, bestPlane, bestLeftN, binned, dx, dy, dz, rnb, axisBase] =
-    [8, 9, 10, 12, 13, 14, 15, 16, 17, 18, 19, 20, 21, 22, 23, 24, 25, 26];
+    [9, 10, 11, 12, 13, 14, 15, 16, 17, 18, 19, 20, 21, 22, 23, 24, 25, 26];
   const [bestLmin, bestLmax, bestRmin, bestRmax, boxes] = [27, 28, 29, 30, 31];
   const code = new Code();
+  code.get(prm).mem(OP.f64Load, 3, 56).set(parentArea);
   code.f64(INF).set(best).i32(-1).set(bestAxis);
   code.get(binStride).i32(12).op(OP.i32Mul).get(tmp).op(OP.i32Add).set(boxes);
   code.op(OP.block, 0x40).op(OP.loop, 0x40); // axes
@@ -386,8 +409,8 @@ function sweepFunction(): FunctionDef {
   code.get(out).get(bestLeftN).mem(OP.i32Store, 2, 16).get(out).get(binned).mem(OP.i32Store, 2, 20);
   code.get(out).get(bestLmin).vstore(32).get(out).get(bestLmax).vstore(48).get(out).get(bestRmin).vstore(64).get(out).get(bestRmax).vstore(80);
   return {
-    name: 'sweep', params: [I32, I32, I32, I32, I32, F64, I32, I32], results: [],
-    locals: [I32, I32, I32, I32, I32, I32, V128, V128, F64, F64, I32, I32, I32, I32, F64, F64, F64, I32, I32, V128, V128, V128, V128, I32], body: code,
+    name: 'sweep', params: [I32, I32, I32, I32, I32, I32, I32, I32], results: [],
+    locals: [F64, I32, I32, I32, I32, I32, V128, V128, F64, F64, I32, I32, I32, I32, F64, F64, F64, I32, I32, V128, V128, V128, V128, I32], body: code,
   };
 }
 
@@ -437,8 +460,9 @@ export interface WasmSlotLayout {
  */
 export function wasmSlotLayout(n: number, threads: number, binCount: number): WasmSlotLayout | null {
   const binStride = Math.max(binCount, 32);
-  // Bins (32 bytes) and counts (4) per axis, 8 result vectors, the sweep's result (96) and suffix arrays (44 per bin).
-  const scratchBytes = Math.ceil((3 * binStride * 36 + 128 + 96 + binStride * 44) / 64) * 64;
+  // Bins (32 bytes) and counts (4) per axis, 8 result vectors, the sweep's result (96), its suffix
+  // arrays (44 per bin) and the f64 parameters (64).
+  const scratchBytes = Math.ceil((3 * binStride * 36 + 128 + 96 + binStride * 44 + 64) / 64) * 64;
   const boxes0 = threads * scratchBytes;
   const boxes1 = boxes0 + n * 32;
   const ids0 = boxes1 + n * 32;
