@@ -20,7 +20,7 @@ import { createSerialBuildState, emptySceneResult, resolveBuildParams } from './
 import { defaultBvhWorkerCount, getBvhWorkerPool } from './bvh-worker-pool.ts';
 
 export { BVH_MAX_DEPTH, BVH_NODE_BYTES } from './bvh-serial.ts';
-export { terminateBvhWorkers } from './bvh-worker-pool.ts';
+export { terminateBvhWorkers, warmBvhWorkers } from './bvh-worker-pool.ts';
 
 export interface BvhBuildOptions {
   /** Nodes with at most this many triangles become leaves without evaluating splits (default 4). */

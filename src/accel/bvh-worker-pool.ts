@@ -197,6 +197,23 @@ export async function getBvhWorkerPool(size: number): Promise<BvhWorkerPool | nu
   };
 }
 
+/**
+ * Starts the BVH worker pool ahead of the first parallel build (a worker takes 50-200 ms to start)
+ * and resolves once every worker answers; false where workers cannot run here. Optional: a build
+ * starts the pool itself. A renderer can call this when it begins loading a large asset.
+ */
+export async function warmBvhWorkers(count = defaultBvhWorkerCount()): Promise<boolean> {
+  const pool = await getBvhWorkerPool(count);
+  if (!pool) return false;
+  try {
+    // `end` of a build no worker knows is a no-op round trip.
+    await Promise.all(Array.from({ length: pool.size() }, (_, w) => pool.request(w, { op: 'end', build: 0 })));
+    return true;
+  } catch {
+    return false;
+  }
+}
+
 /** Default worker count: the hardware threads (navigator.hardwareConcurrency, in Node too), at most 8. */
 export function defaultBvhWorkerCount(): number {
   const n = (globalThis as { navigator?: { hardwareConcurrency?: number } }).navigator?.hardwareConcurrency;

@@ -3,6 +3,7 @@ export {
   buildBvhAsync,
   buildBvhParallel,
   terminateBvhWorkers,
+  warmBvhWorkers,
   BVH_MAX_DEPTH,
   BVH_NODE_BYTES,
   BVH_PARALLEL_MIN_TRIANGLES,

@@ -3,7 +3,7 @@ import assert from 'node:assert/strict';
 import { spawnSync } from 'node:child_process';
 import { fileURLToPath } from 'node:url';
 import { setImmediate as immediate } from 'node:timers';
-import { buildBvh, buildBvhAsync, buildBvhParallel, terminateBvhWorkers } from '../../src/accel/bvh-builder.ts';
+import { buildBvh, buildBvhAsync, buildBvhParallel, terminateBvhWorkers, warmBvhWorkers } from '../../src/accel/bvh-builder.ts';
 import { buildOnWorkers } from '../../src/accel/bvh-parallel.ts';
 import { resolveBuildParams } from '../../src/accel/bvh-serial.ts';
 import { getBvhWorkerPool } from '../../src/accel/bvh-worker-pool.ts';
@@ -55,6 +55,14 @@ test('without shared memory one worker builds a copy: the same tree', async () =
   const unshared = { ...pool, sharedMemory: false };
   const result = await buildOnWorkers(positions, resolveBuildParams(positions), unshared, { sliceMs: 8 });
   assert.ok(sameTree(buildBvh(positions), result));
+});
+
+test('warmBvhWorkers starts the pool, and builds after terminateBvhWorkers start a new one', async () => {
+  assert.equal(await warmBvhWorkers(2), true);
+  terminateBvhWorkers();
+  const positions = randomSoup(40_000, 73, 50, 1);
+  assert.ok(sameTree(await buildBvhParallel(positions, { workers: 2 }), buildBvh(positions)));
+  assert.equal(await warmBvhWorkers(2), true);
 });
 
 test('options and input are validated before any worker starts', async () => {
