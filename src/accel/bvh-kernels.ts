@@ -40,7 +40,7 @@ export interface SlotBuffers {
   ids1: Uint32Array;
 }
 
-/** The WebAssembly loops (bvh-wasm.ts) and where this thread may keep its bins (4 KiB, 16-aligned). */
+/** The WebAssembly loops (bvh-wasm.ts) and this thread's scratch in their memory (`wasmSlotLayout`). */
 export interface BvhWasmBackend {
   exports: {
     bin(...args: number[]): void;
@@ -107,7 +107,10 @@ export function createBvhKernels() {
     out[at + 9] = out[at + 10] = out[at + 11] = -Infinity;
   }
 
-  /** Merges bounds `from` (12 at `fromAt`) into `into` (12 at `intoAt`). Min/max are exact, so merge order is irrelevant. */
+  /**
+   * Merges bounds `from` (12 at `fromAt`) into `into` (12 at `intoAt`). Min/max are exact; merged in
+   * slot order, even ties between -0 and +0 resolve as in one pass over all slots (first one stays).
+   */
   function mergeBounds(into: Float64Array, intoAt: number, from: Float64Array, fromAt: number): void {
     for (let c = 0; c < 12; c++) {
       const v = from[fromAt + c]!;
@@ -571,7 +574,8 @@ export function createBvhKernels() {
     const { maxLeafSize, binCount, maxDepth, leafSizeCap } = params;
     // Bin arrays hold the larger of the two bin counts per axis.
     const binStride = binCount > SAMPLE_BINS ? binCount : SAMPLE_BINS;
-    // In WebAssembly memory the bins sit in this thread's scratch: records, then counts, then 8 vectors of results.
+    // In WebAssembly memory everything below sits in this thread's scratch (see wasmSlotLayout): bin
+    // records, counts, 8 result vectors, the sweep's result and suffix arrays, the f64 parameters.
     const binBytes = 3 * binStride * 32;
     const cntBytes = 3 * binStride * 4;
     if (wasm && wasm.scratch % 16 !== 0) throw new RangeError('bvh: WebAssembly scratch must be 16-byte aligned');
@@ -683,10 +687,6 @@ export function createBvhKernels() {
             sides[6 + c] = sweepBoxes[8 + c]!;
             sides[9 + c] = sweepBoxes[12 + c]!;
           }
-        } else {
-          binUnion(binN, binB, bins, binStride, axis, plane, sides);
-        }
-        if (wasm) {
           wasm.exports.partition(
             srcBoxes.byteOffset + start * 32, srcBoxes.byteOffset + (start + count) * 32,
             dstBoxes.byteOffset + start * 32, dstBoxes.byteOffset + mid * 32,
@@ -696,6 +696,7 @@ export function createBvhKernels() {
           readVectors(0, cbs, 0);
           readVectors(2, cbs, 6);
         } else {
+          binUnion(binN, binB, bins, binStride, axis, plane, sides);
           partitionRange(srcBoxes, srcIds, dstBoxes, dstIds, start, start + count, axis, scale, bins, plane, start, mid, cbs);
         }
         for (let c = 0; c < 6; c++) {
