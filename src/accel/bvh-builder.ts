@@ -16,7 +16,7 @@
  *   otherwise the single-threaded build in time slices that yield to the event loop.
  */
 import { buildOnWorkers } from './bvh-parallel.ts';
-import { createSerialBuildState, emptySceneResult, resolveBuildParams } from './bvh-serial.ts';
+import { createSerialBuildState, emptySceneResult, eventLoopYield, resolveBuildParams } from './bvh-serial.ts';
 import { defaultBvhWorkerCount, getBvhWorkerPool } from './bvh-worker-pool.ts';
 
 export { BVH_MAX_DEPTH, BVH_NODE_BYTES } from './bvh-serial.ts';
@@ -91,16 +91,6 @@ export function buildBvh(positions: Float32Array, options?: BvhBuildOptions): Bv
   const state = createSerialBuildState(positions, resolveBuildParams(positions, options), options?.wasm ?? true);
   state.step(Infinity);
   return state.finish();
-}
-
-type YieldFn = () => Promise<void>;
-
-function eventLoopYield(): YieldFn {
-  // `scheduler.yield()` (Prioritized Task Scheduling) resumes ahead of other queued tasks yet lets
-  // input and rendering run; elsewhere a zero timeout gives the event loop one turn.
-  const scheduler = (globalThis as { scheduler?: { yield?: () => Promise<void> } }).scheduler;
-  if (scheduler && typeof scheduler.yield === 'function') return () => scheduler.yield!();
-  return () => new Promise<void>((resolve) => setTimeout(resolve, 0));
 }
 
 async function buildTimeSliced(positions: Float32Array, options: BvhAsyncBuildOptions): Promise<BvhBuildResult> {

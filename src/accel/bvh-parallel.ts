@@ -2,7 +2,7 @@
  * The parallel build: the same binned-SAH tree as `buildBvh`, bit for bit, built by a pool of
  * workers (bvh-worker-pool.ts) that share the slot buffers through SharedArrayBuffer.
  *
- * Scheme (Wald 2007, sec. 4's "horizontal then vertical" parallelism, in task form):
+ * Scheme (task parallelism over nodes, the usual two phases of parallel top-down builders):
  * 1. the AABB prepass is cut into one chunk per worker;
  * 2. nodes larger than `n / (TASKS_PER_WORKER * workers)` are split one at a time, each split a job
  *    for whichever worker is idle (largest node first), so after the root every worker is busy;
@@ -19,7 +19,7 @@
  */
 import { computeSahCost } from './bvh-sah.ts';
 import type { BvhBuildParams } from './bvh-kernels.ts';
-import { BVH_NODE_BYTES, bvhKernels } from './bvh-serial.ts';
+import { BVH_NODE_BYTES, bvhKernels, eventLoopYield } from './bvh-serial.ts';
 import { compiledBvhWasm, wasmSlotLayout } from './bvh-wasm.ts';
 import type { BvhBuildResult } from './bvh-builder.ts';
 import type { BvhWorkerPool, BvhWorkerReply } from './bvh-worker-pool.ts';
@@ -57,11 +57,7 @@ function checkReply(reply: BvhWorkerReply): BvhWorkerReply {
   return reply;
 }
 
-const yieldToLoop = (): Promise<void> => {
-  const scheduler = (globalThis as { scheduler?: { yield?: () => Promise<void> } }).scheduler;
-  if (scheduler && typeof scheduler.yield === 'function') return scheduler.yield();
-  return new Promise<void>((resolve) => setTimeout(resolve, 0));
-};
+const yieldToLoop = eventLoopYield();
 
 /** Builds on the pool's workers; rejects on abort (with `signal.reason`) or when a worker fails. */
 export async function buildOnWorkers(
@@ -103,7 +99,9 @@ export async function buildOnWorkers(
     ? { op: 'begin', build, positions: sharedPositions, memory, module, layout, abort, params }
     : { op: 'begin', build, positions: sharedPositions, slots, abort, params };
   try {
-    const begun = Array.from({ length: workerCount }, (_, w) => pool.request(w, { ...begin, scratch: w * (layout?.scratchBytes ?? 0) }));
+    // Awaited below; a failure before then must not count as an unhandled rejection meanwhile.
+    const quiet = <T>(promise: Promise<T>): Promise<T> => (promise.catch(() => {}), promise);
+    const begun = Array.from({ length: workerCount }, (_, w) => quiet(pool.request(w, { ...begin, scratch: w * (layout?.scratchBytes ?? 0) })));
 
     // 1. Prepass, one chunk per worker, each started as soon as its positions are in shared memory
     //    (copied in slices, yielding in between: 1M triangles are 36 MB). Min/max merge exactly, so
@@ -124,7 +122,7 @@ export async function buildOnWorkers(
           sliceStart = performance.now();
         }
       }
-      prepass.push(pool.request(w, { op: 'boxes', build, from, to }));
+      prepass.push(quiet(pool.request(w, { op: 'boxes', build, from, to })));
     }
     await Promise.all(begun);
     for (const part of await Promise.all(prepass)) k.mergeBounds(rootBounds, 0, part.bounds as Float64Array, 0);

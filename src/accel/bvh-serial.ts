@@ -32,6 +32,15 @@ export function bvhKernels(): BvhKernels {
   return sharedKernels;
 }
 
+/** A function that gives the event loop one turn. */
+export function eventLoopYield(): () => Promise<void> {
+  // `scheduler.yield()` (Prioritized Task Scheduling) resumes ahead of other queued tasks yet lets
+  // input and rendering run; elsewhere a zero timeout gives the event loop one turn.
+  const scheduler = (globalThis as { scheduler?: { yield?: () => Promise<void> } }).scheduler;
+  if (scheduler && typeof scheduler.yield === 'function') return () => scheduler.yield!();
+  return () => new Promise<void>((resolve) => setTimeout(resolve, 0));
+}
+
 function positiveInt(value: number | undefined, fallback: number, name: string): number {
   if (value === undefined) return fallback;
   if (!Number.isInteger(value) || value < 1) throw new RangeError(`buildBvh: ${name} must be a positive integer, got ${value}`);
