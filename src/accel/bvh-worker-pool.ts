@@ -11,7 +11,9 @@
  * - Node: `new Worker(source, { eval: true })` from `node:worker_threads`, imported through a
  *   variable specifier so bundlers targeting browsers leave it alone.
  * When neither works (no Worker, CSP refusal, a tool that instruments function bodies), callers get
- * `null` or a rejected request and fall back to the single-threaded build.
+ * `null` or a rejected request and fall back to the single-threaded build. The WebAssembly module
+ * (bvh-wasm.ts) is compiled here and posted to the workers; under a CSP without 'wasm-unsafe-eval'
+ * everything runs in JS (the same tree), or pass `wasm: false` to skip the attempt.
  *
  * Workers are kept for later builds (starting one costs tens of milliseconds). In Node they are
  * `unref`ed while idle, so they never keep a process alive; `terminateBvhWorkers` ends them.
@@ -61,8 +63,13 @@ const WEB_HOST = `const host = {
   post: (m, t) => self.postMessage(m, t),
 };`;
 
+/**
+ * The worker's whole source. `__name` is the one helper a bundler may weave into function bodies
+ * (esbuild's keepNames); a no-op stand-in keeps such a build working. Helpers of other tools (coverage
+ * counters, say) make the worker fail to start, and the build falls back to the calling thread.
+ */
 function workerSource(hostPrologue: string): string {
-  return `"use strict";\n${hostPrologue}\n(${bvhWorkerMain.toString()})(${createBvhKernels.toString()}, host);\n`;
+  return `"use strict";\nconst __name = (target) => target;\n${hostPrologue}\n(${bvhWorkerMain.toString()})(${createBvhKernels.toString()}, host);\n`;
 }
 
 interface NodeWorker {
