@@ -48,6 +48,14 @@ test('the tree does not depend on the number of workers', async () => {
   assert.ok(sameTree(one, buildBvh(positions)));
 });
 
+test('concurrent parallel builds on the same workers keep to their own meshes', async () => {
+  const a = randomSoup(70_000, 74, 50, 1);
+  const b = gridMesh(150);
+  const [ra, rb] = await Promise.all([buildBvhParallel(a, { workers: 2 }), buildBvhParallel(b, { workers: 2 })]);
+  assert.ok(sameTree(ra, buildBvh(a)));
+  assert.ok(sameTree(rb, buildBvh(b)));
+});
+
 test('without shared memory one worker builds a copy: the same tree', async () => {
   const positions = randomSoup(50_000, 66, 50, 1);
   const pool = await getBvhWorkerPool(1);
