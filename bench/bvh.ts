@@ -7,8 +7,8 @@
  * bvh-sah.ts), as ratios.
  *
  * Settings (chosen to be comparable):
- * - ours: maxLeafSize 4 (smaller nodes become leaves), leaf cap 16, 16 bins (nodes of >= 16384
- *   triangles: a strided sample in 32 bins), depth <= 48; parallel: `BVH_BENCH_WORKERS` workers
+ * - ours: maxLeafSize 4 (smaller nodes become leaves), leaf cap 16, 16 bins, depth <= 48, WebAssembly
+ *   SIMD loops; parallel: `BVH_BENCH_WORKERS` workers
  *   (default navigator.hardwareConcurrency).
  * - three-mesh-bvh: targetLeafSize 4, maxDepth 48, indirect: true (it permutes an index array, like
  *   our triangleOrder, instead of rewriting the geometry), verbose: false. Its SAH uses 8 bins (or
@@ -216,7 +216,7 @@ export async function runBvhBenchmark(options: { sizes?: number[]; runs?: number
     threeMeshBvhVersion: tmbPackage.version,
     settings: {
       costModel: 'C_trav = 1, C_isect = 1, surface areas relative to the root',
-      ours: { maxLeafSize: 4, leafSizeCap: 16, binCount: 16, sampledAbove: 16384, sampleBins: 32, maxDepth: 48, workers },
+      ours: { maxLeafSize: 4, leafSizeCap: 16, binCount: 16, maxDepth: 48, workers, wasm: true },
       threeMeshBvh: { targetLeafSize: 4, maxDepth: 48, indirect: true },
       timing: 'wall clock per build, builders interleaved run by run; median (min-max) of 7 runs (100k, after one warm-up) or 5 runs (1M)',
     },

@@ -25,11 +25,7 @@ export { terminateBvhWorkers, warmBvhWorkers } from './bvh-worker-pool.ts';
 export interface BvhBuildOptions {
   /** Nodes with at most this many triangles become leaves without evaluating splits (default 4). */
   maxLeafSize?: number;
-  /**
-   * SAH bins per axis over the centroid bounds (default 16, Wald 2007 reports 16-32 suffice). Nodes
-   * of 16384 triangles or more choose their split from an evenly strided sample of 8192-16383 of
-   * their triangles in 32 bins instead (then partition all of them exactly).
-   */
+  /** SAH bins per axis over the centroid bounds (default 16, Wald 2007 reports 16-32 suffice). */
   binCount?: number;
   /** Leaves larger than this are split even when the SAH says a leaf is cheaper (default 16). */
   leafSizeCap?: number;

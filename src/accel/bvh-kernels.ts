@@ -13,10 +13,8 @@
  *   binning, partitioning and scanning where WebAssembly runs;
  * - centroids are doubled and rounded to float32 (Math.fround(min + max), as f32x4.add), so the JS
  *   and WebAssembly loops put every triangle in the same bin and build the same tree, bit for bit;
- * - two slot buffers, "0" and "1": a node at depth d reads its slots from buffer (d & 1) and its
- *   partition writes the children's slots into the other one (ping-pong), reading and writing each
- *   slot once, sequentially;
- * - leaves at odd depths copy their ids into buffer 0, which becomes `triangleOrder`.
+ * - a node owns a contiguous range of slots; its partition reorders them in place (Hoare's scheme,
+ *   two cursors from both ends), so the ids array ends up as `triangleOrder`;
  * - nodes: 32-byte records (boundsMin vec3f, leftOrFirst u32, boundsMax vec3f, primitiveCount u32),
  *   children of an interior node in a sibling pair at leftOrFirst, leftOrFirst + 1; pairs allocated
  *   in depth-first order (left subtree first).
@@ -28,24 +26,19 @@ export interface BvhBuildParams {
   binCount: number;
   leafSizeCap: number;
   maxDepth: number;
-  /** Nodes of at least 2 * sampleSize triangles bin a strided sample of sampleSize..2*sampleSize of them. */
-  sampleSize: number;
 }
 
-/** The two slot buffers (see the layout above); views may cover a sub-range of the whole. */
+/** The slots (see the layout above); views may cover a sub-range of the whole. */
 export interface SlotBuffers {
-  boxes0: Float32Array;
-  ids0: Uint32Array;
-  boxes1: Float32Array;
-  ids1: Uint32Array;
+  boxes: Float32Array;
+  ids: Uint32Array;
 }
 
 /** The WebAssembly loops (bvh-wasm.ts) and this thread's scratch in their memory (`wasmSlotLayout`). */
 export interface BvhWasmBackend {
   exports: {
     bin(...args: number[]): void;
-    partition(...args: number[]): void;
-    partitionSampled(...args: number[]): number;
+    partition(...args: number[]): number;
     scan(p: number, end: number, out: number): void;
     sweep(...args: number[]): void;
   };
@@ -59,7 +52,7 @@ export interface SubtreeTask extends SlotBuffers {
   count: number;
   /** Global slot of local slot 0 (leaves store global slots). */
   slotBase: number;
-  /** Depth of the subtree root in the whole tree (parity picks its buffer; the cap counts from 0). */
+  /** Depth of the subtree root in the whole tree (the depth cap counts from the whole tree's root). */
   depth: number;
   /** AABB (6) and doubled-centroid bounds (6) of the subtree's triangles. */
   rootBounds: Float64Array;
@@ -89,8 +82,6 @@ export function createBvhKernels() {
   const LEAF = 0;
   const MEDIAN = 1;
   const SAH = 2;
-  /** Bins of sampled nodes (see `split`). */
-  const SAMPLE_BINS = 32;
 
   function halfArea(minX: number, minY: number, minZ: number, maxX: number, maxY: number, maxZ: number): number {
     const dx = maxX - minX;
@@ -214,14 +205,14 @@ export function createBvhKernels() {
   }
 
   /**
-   * Adds every `stride`-th slot of [start, end) to the bins on all three axes in one pass (Wald 2007,
+   * Adds slots [start, end) to the bins on all three axes in one pass (Wald 2007,
    * sec. 3.2: centroid binning, each bin keeping a count and the AABB of its triangles).
    */
-  function binRange(boxes: Float32Array, start: number, end: number, stride: number, scale: Float64Array, bins: number, binStride: number, binN: Int32Array, binB: Float32Array): void {
+  function binRange(boxes: Float32Array, start: number, end: number, scale: Float64Array, bins: number, binStride: number, binN: Int32Array, binB: Float32Array): void {
     const k0 = scale[0]!, k1 = scale[1]!, k2 = scale[2]!, m0 = scale[3]!, m1 = scale[4]!, m2 = scale[5]!;
     const last = bins - 1;
     const base1 = binStride, base2 = 2 * binStride;
-    for (let s = start * 8, e = end * 8, st = stride * 8; s < e; s += st) {
+    for (let s = start * 8, e = end * 8; s < e; s += 8) {
       const x0 = boxes[s]!, y0 = boxes[s + 1]!, z0 = boxes[s + 2]!, x1 = boxes[s + 4]!, y1 = boxes[s + 5]!, z1 = boxes[s + 6]!;
       if (k0 !== 0) {
         const f = k0 * (Math.fround(x0 + x1) - m0);
@@ -333,7 +324,7 @@ export function createBvhKernels() {
   }
 
   /**
-   * Chooses what to do with a swept node of `count` triangles (the bins may hold a sample of them):
+   * Chooses what to do with a swept node of `count` triangles:
    * returns LEAF, MEDIAN or SAH; for SAH `choice` gets [axis, plane, left count in the bins].
    */
   function decideSplit(result: Float64Array, parentArea: number, count: number, params: BvhBuildParams, choice: Int32Array): number {
@@ -349,27 +340,6 @@ export function createBvhKernels() {
     return SAH;
   }
 
-  /** AABBs of both sides of `plane` on `axis` as unions of their bins, into `childBounds` (left 6, right 6). */
-  function binUnion(binN: Int32Array, binB: Float32Array, bins: number, binStride: number, axis: number, plane: number, childBounds: Float64Array): void {
-    for (let c = 0; c < 3; c++) {
-      childBounds[c] = childBounds[6 + c] = Infinity;
-      childBounds[3 + c] = childBounds[9 + c] = -Infinity;
-    }
-    const base = axis * binStride;
-    // Left side in ascending, right side in descending bin order, as the sweep's prefix and suffix
-    // unions run: with ties between -0 and +0 the first one seen stays, and the trees must match.
-    for (let i = 0; i < bins; i++) {
-      const b = i < plane ? i : bins - 1 - (i - plane);
-      if (binN[base + b] === 0) continue;
-      const t = b < plane ? 0 : 6;
-      const q = (base + b) * 8;
-      for (let c = 0; c < 3; c++) {
-        if (binB[q + c]! < childBounds[t + c]!) childBounds[t + c] = binB[q + c]!;
-        if (binB[q + 4 + c]! > childBounds[t + 3 + c]!) childBounds[t + 3 + c] = binB[q + 4 + c]!;
-      }
-    }
-  }
-
   /**
    * Depth budget: below a node at `depth` there are maxDepth - depth - 1 levels for its larger child;
    * with median splits from there on, a child of N triangles reaches leaves of <= leafSizeCap only if
@@ -382,156 +352,86 @@ export function createBvhKernels() {
   }
 
   /**
-   * Stable partition of slots [start, end) of (srcBoxes, srcIds) by bin(centroid on `axis`) < `plane`
-   * into (dstBoxes, dstIds): left slots from `leftAt` on, right slots from `rightAt` on, both in
-   * source order. The doubled-centroid bounds of both sides go to `cbOut` (left 6, right 6).
+   * In-place partition of slots [start, end) by bin(centroid on `axis`) < `plane` (Hoare's scheme:
+   * a cursor from each end, swapping a right slot found from the left with a left slot found from
+   * the right). Both sides' AABBs and doubled-centroid bounds go to `out` (left box, left cb, right
+   * box, right cb); returns the first right slot. The WebAssembly `partition` visits and folds the
+   * slots in the same order.
    */
-  function partitionRange(
-    srcBoxes: Float32Array, srcIds: Uint32Array, dstBoxes: Float32Array, dstIds: Uint32Array,
-    start: number, end: number, axis: number, scale: Float64Array, bins: number, plane: number,
-    leftAt: number, rightAt: number, cbOut: Float64Array,
-  ): void {
-    const k = scale[axis]!, m = scale[3 + axis]!;
-    const last = bins - 1;
-    let l0 = Infinity, l1 = Infinity, l2 = Infinity, l3 = -Infinity, l4 = -Infinity, l5 = -Infinity;
-    let r0 = Infinity, r1 = Infinity, r2 = Infinity, r3 = -Infinity, r4 = -Infinity, r5 = -Infinity;
-    let li = leftAt;
-    let ri = rightAt;
-    for (let i = start; i < end; i++) {
-      const s = i * 8;
-      const x0 = srcBoxes[s]!, y0 = srcBoxes[s + 1]!, z0 = srcBoxes[s + 2]!, x1 = srcBoxes[s + 4]!, y1 = srcBoxes[s + 5]!, z1 = srcBoxes[s + 6]!;
-      const cx = Math.fround(x0 + x1), cy = Math.fround(y0 + y1), cz = Math.fround(z0 + z1);
-      // The same expression as in binRange, so every slot lands on the side its bin was counted on.
-      const f = k * ((axis === 0 ? cx : axis === 1 ? cy : cz) - m);
-      const b = f >= last ? last : f > 0 ? f | 0 : 0;
-      let d: number;
-      if (b < plane) {
-        if (cx < l0) l0 = cx;
-        if (cy < l1) l1 = cy;
-        if (cz < l2) l2 = cz;
-        if (cx > l3) l3 = cx;
-        if (cy > l4) l4 = cy;
-        if (cz > l5) l5 = cz;
-        d = li++;
-      } else {
-        if (cx < r0) r0 = cx;
-        if (cy < r1) r1 = cy;
-        if (cz < r2) r2 = cz;
-        if (cx > r3) r3 = cx;
-        if (cy > r4) r4 = cy;
-        if (cz > r5) r5 = cz;
-        d = ri++;
-      }
-      const o = d * 8;
-      dstBoxes[o] = x0;
-      dstBoxes[o + 1] = y0;
-      dstBoxes[o + 2] = z0;
-      dstBoxes[o + 3] = 0;
-      dstBoxes[o + 4] = x1;
-      dstBoxes[o + 5] = y1;
-      dstBoxes[o + 6] = z1;
-      dstBoxes[o + 7] = 0;
-      dstIds[d] = srcIds[i]!;
-    }
-    cbOut[0] = l0; cbOut[1] = l1; cbOut[2] = l2; cbOut[3] = l3; cbOut[4] = l4; cbOut[5] = l5;
-    cbOut[6] = r0; cbOut[7] = r1; cbOut[8] = r2; cbOut[9] = r3; cbOut[10] = r4; cbOut[11] = r5;
-  }
-
-  /**
-   * Partition for a split chosen from a sample, where neither side's size nor AABB is known yet: left
-   * slots go forward from `start`, right slots backward from `end - 1`, in one pass that also gathers
-   * both sides' AABBs and doubled-centroid bounds into `out` (left box, left cb, right box, right cb).
-   * Returns the first right slot.
-   */
-  function partitionSampled(
-    srcBoxes: Float32Array, srcIds: Uint32Array, dstBoxes: Float32Array, dstIds: Uint32Array,
-    start: number, end: number, axis: number, scale: Float64Array, bins: number, plane: number, out: Float64Array,
+  function partitionInPlace(
+    boxes: Float32Array, ids: Uint32Array, start: number, end: number, axis: number, scale: Float64Array, bins: number, plane: number, out: Float64Array,
   ): number {
     const k = scale[axis]!, m = scale[3 + axis]!;
     const last = bins - 1;
-    let la0 = Infinity, la1 = Infinity, la2 = Infinity, la3 = -Infinity, la4 = -Infinity, la5 = -Infinity;
-    let ra0 = Infinity, ra1 = Infinity, ra2 = Infinity, ra3 = -Infinity, ra4 = -Infinity, ra5 = -Infinity;
-    let lc0 = Infinity, lc1 = Infinity, lc2 = Infinity, lc3 = -Infinity, lc4 = -Infinity, lc5 = -Infinity;
-    let rc0 = Infinity, rc1 = Infinity, rc2 = Infinity, rc3 = -Infinity, rc4 = -Infinity, rc5 = -Infinity;
-    let li = start;
-    let ri = end - 1;
-    for (let i = start; i < end; i++) {
-      const s = i * 8;
-      const x0 = srcBoxes[s]!, y0 = srcBoxes[s + 1]!, z0 = srcBoxes[s + 2]!, x1 = srcBoxes[s + 4]!, y1 = srcBoxes[s + 5]!, z1 = srcBoxes[s + 6]!;
-      const cx = Math.fround(x0 + x1), cy = Math.fround(y0 + y1), cz = Math.fround(z0 + z1);
-      const f = k * ((axis === 0 ? cx : axis === 1 ? cy : cz) - m);
-      const b = f >= last ? last : f > 0 ? f | 0 : 0;
-      let d: number;
-      if (b < plane) {
-        if (x0 < la0) la0 = x0;
-        if (y0 < la1) la1 = y0;
-        if (z0 < la2) la2 = z0;
-        if (x1 > la3) la3 = x1;
-        if (y1 > la4) la4 = y1;
-        if (z1 > la5) la5 = z1;
-        if (cx < lc0) lc0 = cx;
-        if (cy < lc1) lc1 = cy;
-        if (cz < lc2) lc2 = cz;
-        if (cx > lc3) lc3 = cx;
-        if (cy > lc4) lc4 = cy;
-        if (cz > lc5) lc5 = cz;
-        d = li++;
-      } else {
-        if (x0 < ra0) ra0 = x0;
-        if (y0 < ra1) ra1 = y0;
-        if (z0 < ra2) ra2 = z0;
-        if (x1 > ra3) ra3 = x1;
-        if (y1 > ra4) ra4 = y1;
-        if (z1 > ra5) ra5 = z1;
-        if (cx < rc0) rc0 = cx;
-        if (cy < rc1) rc1 = cy;
-        if (cz < rc2) rc2 = cz;
-        if (cx > rc3) rc3 = cx;
-        if (cy > rc4) rc4 = cy;
-        if (cz > rc5) rc5 = cz;
-        d = ri--;
-      }
-      const o = d * 8;
-      dstBoxes[o] = x0;
-      dstBoxes[o + 1] = y0;
-      dstBoxes[o + 2] = z0;
-      dstBoxes[o + 3] = 0;
-      dstBoxes[o + 4] = x1;
-      dstBoxes[o + 5] = y1;
-      dstBoxes[o + 6] = z1;
-      dstBoxes[o + 7] = 0;
-      dstIds[d] = srcIds[i]!;
+    // Left box, left centroid bounds, right box, right centroid bounds: min xyz then max xyz each.
+    const acc = out;
+    for (let c = 0; c < 24; c += 6) {
+      acc[c] = acc[c + 1] = acc[c + 2] = Infinity;
+      acc[c + 3] = acc[c + 4] = acc[c + 5] = -Infinity;
     }
-    out[0] = la0; out[1] = la1; out[2] = la2; out[3] = la3; out[4] = la4; out[5] = la5;
-    out[6] = lc0; out[7] = lc1; out[8] = lc2; out[9] = lc3; out[10] = lc4; out[11] = lc5;
-    out[12] = ra0; out[13] = ra1; out[14] = ra2; out[15] = ra3; out[16] = ra4; out[17] = ra5;
-    out[18] = rc0; out[19] = rc1; out[20] = rc2; out[21] = rc3; out[22] = rc4; out[23] = rc5;
-    return li;
+    const side = (slot: number): boolean => {
+      const s = slot * 8;
+      const f = k * (Math.fround(boxes[s + axis]! + boxes[s + 4 + axis]!) - m);
+      const b = f >= last ? last : f > 0 ? f | 0 : 0;
+      return b < plane;
+    };
+    const fold = (slot: number, at: number): void => {
+      const s = slot * 8;
+      const x0 = boxes[s]!, y0 = boxes[s + 1]!, z0 = boxes[s + 2]!, x1 = boxes[s + 4]!, y1 = boxes[s + 5]!, z1 = boxes[s + 6]!;
+      if (x0 < acc[at]!) acc[at] = x0;
+      if (y0 < acc[at + 1]!) acc[at + 1] = y0;
+      if (z0 < acc[at + 2]!) acc[at + 2] = z0;
+      if (x1 > acc[at + 3]!) acc[at + 3] = x1;
+      if (y1 > acc[at + 4]!) acc[at + 4] = y1;
+      if (z1 > acc[at + 5]!) acc[at + 5] = z1;
+      const cx = Math.fround(x0 + x1), cy = Math.fround(y0 + y1), cz = Math.fround(z0 + z1);
+      if (cx < acc[at + 6]!) acc[at + 6] = cx;
+      if (cy < acc[at + 7]!) acc[at + 7] = cy;
+      if (cz < acc[at + 8]!) acc[at + 8] = cz;
+      if (cx > acc[at + 9]!) acc[at + 9] = cx;
+      if (cy > acc[at + 10]!) acc[at + 10] = cy;
+      if (cz > acc[at + 11]!) acc[at + 11] = cz;
+    };
+    let i = start;
+    let j = end - 1;
+    for (;;) {
+      while (i <= j && side(i)) fold(i++, 0);
+      while (i <= j && !side(j)) fold(j--, 12);
+      if (i >= j) break;
+      // Slot i belongs right, slot j left: swap them, then fold each into its side.
+      const t = ids[i]!;
+      ids[i] = ids[j]!;
+      ids[j] = t;
+      for (let c = 0; c < 8; c++) {
+        const v = boxes[i * 8 + c]!;
+        boxes[i * 8 + c] = boxes[j * 8 + c]!;
+        boxes[j * 8 + c] = v;
+      }
+      fold(i++, 0);
+      fold(j--, 12);
+    }
+    return i;
   }
 
   /**
    * Object-median split along the widest centroid axis (index halves when all centroids coincide):
-   * Hoare quickselect in the source buffer, then the slots move to the destination buffer unchanged
-   * (unless both are the same).
+   * Hoare quickselect, in place.
    */
-  function medianSplit(
-    srcBoxes: Float32Array, srcIds: Uint32Array, dstBoxes: Float32Array, dstIds: Uint32Array,
-    start: number, count: number, cb: Float64Array, cbAt: number,
-  ): number {
+  function medianSplit(boxes: Float32Array, ids: Uint32Array, start: number, count: number, cb: Float64Array, cbAt: number): number {
     const end = start + count;
     const mid = start + (count >>> 1);
     const ex = cb[cbAt + 3]! - cb[cbAt]!, ey = cb[cbAt + 4]! - cb[cbAt + 1]!, ez = cb[cbAt + 5]! - cb[cbAt + 2]!;
     if (ex > 0 || ey > 0 || ez > 0) {
       const axis = ex >= ey && ex >= ez ? 0 : ey >= ez ? 1 : 2;
-      const key = (slot: number): number => Math.fround(srcBoxes[slot * 8 + axis]! + srcBoxes[slot * 8 + 4 + axis]!);
+      const key = (slot: number): number => Math.fround(boxes[slot * 8 + axis]! + boxes[slot * 8 + 4 + axis]!);
       const swap = (i: number, j: number): void => {
-        const t = srcIds[i]!;
-        srcIds[i] = srcIds[j]!;
-        srcIds[j] = t;
+        const t = ids[i]!;
+        ids[i] = ids[j]!;
+        ids[j] = t;
         for (let c = 0; c < 8; c++) {
-          const v = srcBoxes[i * 8 + c]!;
-          srcBoxes[i * 8 + c] = srcBoxes[j * 8 + c]!;
-          srcBoxes[j * 8 + c] = v;
+          const v = boxes[i * 8 + c]!;
+          boxes[i * 8 + c] = boxes[j * 8 + c]!;
+          boxes[j * 8 + c] = v;
         }
       };
       let lo = start;
@@ -557,10 +457,6 @@ export function createBvhKernels() {
         else break;
       }
     }
-    if (dstBoxes !== srcBoxes) {
-      dstBoxes.set(srcBoxes.subarray(start * 8, end * 8), start * 8);
-      dstIds.set(srcIds.subarray(start, end), start);
-    }
     return mid;
   }
 
@@ -572,8 +468,7 @@ export function createBvhKernels() {
    */
   function createSplitter(params: BvhBuildParams, wasm?: BvhWasmBackend) {
     const { maxLeafSize, binCount, maxDepth, leafSizeCap } = params;
-    // Bin arrays hold the larger of the two bin counts per axis.
-    const binStride = binCount > SAMPLE_BINS ? binCount : SAMPLE_BINS;
+    const binStride = binCount;
     // In WebAssembly memory everything below sits in this thread's scratch (see wasmSlotLayout): bin
     // records, counts, 8 result vectors, the sweep's result and suffix arrays, the f64 parameters.
     const binBytes = 3 * binStride * 32;
@@ -587,18 +482,15 @@ export function createBvhKernels() {
     const sweepAt = resultsAt + 128;
     const sweepCost = wasm ? new Float64Array(wasm.buffer, sweepAt, 1) : new Float64Array(1);
     const sweepInts = wasm ? new Int32Array(wasm.buffer, sweepAt + 8, 4) : new Int32Array(4);
-    const sweepTmp = sweepAt + 96;
-    const sweepBoxes = wasm ? new Float32Array(wasm.buffer, sweepAt + 32, 16) : new Float32Array(16);
+    const sweepTmp = sweepAt + 32;
     const swept = new Float64Array(5);
     // f64 parameters of the WebAssembly calls (k0, k1, k2, m0, m1, m2, last bin, parent area).
-    const paramsAt = sweepTmp + binStride * 44;
+    const paramsAt = sweepTmp + binStride * 12;
     const wasmParams = wasm ? new Float64Array(wasm.buffer, paramsAt, 8) : new Float64Array(8);
     const rightArea = new Float64Array(binStride);
     const rightN = new Int32Array(binStride);
     const scale = new Float64Array(6);
     const choice = new Int32Array(3);
-    const sides = new Float64Array(12);
-    const cbs = new Float64Array(12);
 
     /** Vectors (min, max) at results[4v..] into out[at..at+6). */
     const readVectors = (v: number, out: Float64Array, at: number): void => {
@@ -617,33 +509,20 @@ export function createBvhKernels() {
       box: Float64Array, boxAt: number, cb: Float64Array, cbAt: number, out: Float64Array,
     ): number {
       if (count <= maxLeafSize || depth >= maxDepth) return -1;
-      const odd = (depth & 1) === 1;
-      const srcBoxes = odd ? slots.boxes1 : slots.boxes0, srcIds = odd ? slots.ids1 : slots.ids0;
-      const dstBoxes = odd ? slots.boxes0 : slots.boxes1, dstIds = odd ? slots.ids0 : slots.ids1;
-      // Large nodes choose their plane from an evenly strided sample of sampleSize..2*sampleSize
-      // triangles in SAMPLE_BINS bins (the partition still moves every triangle and measures both
-      // sides exactly); the sample's bins hold real triangles of both sides, so the split is never
-      // empty. Smaller nodes bin every triangle, in at most one bin per triangle.
-      const stride = (count / params.sampleSize) | 0;
-      const sampled = stride >= 2;
-      const step = sampled ? stride : 1;
-      const bins = sampled ? SAMPLE_BINS : count < binCount ? count : binCount;
+      const { boxes, ids } = slots;
+      // Fewer bins than triangles cannot help; small nodes sweep fewer planes.
+      const bins = count < binCount ? count : binCount;
       binScales(cb, cbAt, bins, scale);
       let decision = count > leafSizeCap ? MEDIAN : LEAF;
       if (scale[0] !== 0 || scale[1] !== 0 || scale[2] !== 0) {
-        if (wasm) {
-          const p = srcBoxes.byteOffset + start * 32;
-          for (let c = 0; c < 6; c++) wasmParams[c] = scale[c]!;
-          wasmParams[6] = bins - 1;
-          wasm.exports.bin(p, p + count * 32, step * 32, bins - 1, binB.byteOffset, binN.byteOffset, binStride, paramsAt);
-        } else {
-          resetBins(binN, binB, bins, binStride);
-          binRange(srcBoxes, start, start + count, step, scale, bins, binStride, binN, binB);
-        }
         const parentArea = halfArea(box[boxAt]!, box[boxAt + 1]!, box[boxAt + 2]!, box[boxAt + 3]!, box[boxAt + 4]!, box[boxAt + 5]!);
         if (wasm) {
-          const mask = (scale[0] !== 0 ? 1 : 0) | (scale[1] !== 0 ? 2 : 0) | (scale[2] !== 0 ? 4 : 0);
+          const p = boxes.byteOffset + start * 32;
+          for (let c = 0; c < 6; c++) wasmParams[c] = scale[c]!;
+          wasmParams[6] = bins - 1;
           wasmParams[7] = parentArea;
+          wasm.exports.bin(p, p + count * 32, bins - 1, binB.byteOffset, binN.byteOffset, binStride, paramsAt);
+          const mask = (scale[0] !== 0 ? 1 : 0) | (scale[1] !== 0 ? 2 : 0) | (scale[2] !== 0 ? 4 : 0);
           wasm.exports.sweep(binB.byteOffset, binN.byteOffset, bins, binStride, mask, sweepTmp, sweepAt, paramsAt);
           swept[0] = sweepCost[0]!;
           swept[1] = sweepInts[0]!;
@@ -651,19 +530,21 @@ export function createBvhKernels() {
           swept[3] = sweepInts[2]!;
           swept[4] = sweepInts[3]!;
         } else {
+          resetBins(binN, binB, bins, binStride);
+          binRange(boxes, start, start + count, scale, bins, binStride, binN, binB);
           sweepBins(binN, binB, bins, binStride, scale, parentArea, rightArea, rightN, swept);
         }
         decision = decideSplit(swept, parentArea, count, params, choice);
       }
+      if (decision === SAH && !withinDepthBudget(count, choice[2]!, depth, params)) decision = MEDIAN;
       if (decision === LEAF) return -1;
-      const axis = choice[0]!, plane = choice[1]!;
-      let mid: number;
-      if (decision === SAH && sampled) {
+      if (decision === SAH) {
+        const axis = choice[0]!, plane = choice[1]!;
+        let mid: number;
         if (wasm) {
-          const left = wasm.exports.partitionSampled(
-            srcBoxes.byteOffset + start * 32, srcBoxes.byteOffset + (start + count) * 32,
-            dstBoxes.byteOffset + start * 32, dstBoxes.byteOffset + (start + count - 1) * 32,
-            srcIds.byteOffset + start * 4, dstIds.byteOffset + start * 4, dstIds.byteOffset + (start + count - 1) * 4,
+          const left = wasm.exports.partition(
+            boxes.byteOffset + start * 32, boxes.byteOffset + (start + count - 1) * 32,
+            ids.byteOffset + start * 4, ids.byteOffset + (start + count - 1) * 4,
             axis * 4, bins - 1, plane, resultsAt, paramsAt,
           );
           mid = start + left;
@@ -672,56 +553,17 @@ export function createBvhKernels() {
           readVectors(4, out, 12);
           readVectors(6, out, 18);
         } else {
-          mid = partitionSampled(srcBoxes, srcIds, dstBoxes, dstIds, start, start + count, axis, scale, bins, plane, out);
+          mid = partitionInPlace(boxes, ids, start, start + count, axis, scale, bins, plane, out);
         }
-        if (withinDepthBudget(count, mid - start, depth, params)) return mid;
-        // Too lopsided for the depth left: median split of the (now partitioned) destination slots.
-        mid = medianSplit(dstBoxes, dstIds, dstBoxes, dstIds, start, count, cb, cbAt);
-      } else if (decision === SAH && withinDepthBudget(count, choice[2]!, depth, params)) {
-        mid = start + choice[2]!;
-        if (wasm) {
-          // The sweep kept the best split's boxes (the unions of its bins).
-          for (let c = 0; c < 3; c++) {
-            sides[c] = sweepBoxes[c]!;
-            sides[3 + c] = sweepBoxes[4 + c]!;
-            sides[6 + c] = sweepBoxes[8 + c]!;
-            sides[9 + c] = sweepBoxes[12 + c]!;
-          }
-          wasm.exports.partition(
-            srcBoxes.byteOffset + start * 32, srcBoxes.byteOffset + (start + count) * 32,
-            dstBoxes.byteOffset + start * 32, dstBoxes.byteOffset + mid * 32,
-            srcIds.byteOffset + start * 4, dstIds.byteOffset + start * 4, dstIds.byteOffset + mid * 4,
-            axis * 4, bins - 1, plane, resultsAt, paramsAt,
-          );
-          readVectors(0, cbs, 0);
-          readVectors(2, cbs, 6);
-        } else {
-          binUnion(binN, binB, bins, binStride, axis, plane, sides);
-          partitionRange(srcBoxes, srcIds, dstBoxes, dstIds, start, start + count, axis, scale, bins, plane, start, mid, cbs);
-        }
-        for (let c = 0; c < 6; c++) {
-          out[c] = sides[c]!;
-          out[6 + c] = cbs[c]!;
-          out[12 + c] = sides[6 + c]!;
-          out[18 + c] = cbs[6 + c]!;
-        }
+        if (mid - start !== choice[2]) throw new Error(`bvh: internal error, partition ${mid - start} != binned ${choice[2]}`);
         return mid;
-      } else {
-        mid = medianSplit(srcBoxes, srcIds, dstBoxes, dstIds, start, count, cb, cbAt);
       }
-      scan(dstBoxes, start, mid, out, 0);
-      scan(dstBoxes, mid, start + count, out, 12);
+      const mid = medianSplit(boxes, ids, start, count, cb, cbAt);
+      scan(boxes, start, mid, out, 0);
+      scan(boxes, mid, start + count, out, 12);
       return mid;
     }
     return split;
-  }
-
-  /** triangleOrder is buffer 0; a leaf at an odd depth holds its ids in buffer 1 and copies them. */
-  function settleLeaf(slots: SlotBuffers, start: number, count: number, depth: number): void {
-    if ((depth & 1) === 0) return;
-    // A plain loop: leaves are small, and a subarray view per leaf would keep the GC busy.
-    const from = slots.ids1, to = slots.ids0;
-    for (let i = start, end = start + count; i < end; i++) to[i] = from[i]!;
   }
 
   /**
@@ -774,7 +616,6 @@ export function createBvhKernels() {
       if (mid < 0) {
         nodeU[node * 8 + 3] = slotBase + start;
         nodeU[node * 8 + 7] = count;
-        settleLeaf(task, start, count, depth);
         leafCount++;
         placed += count;
         if (depth > depthReached) depthReached = depth;
@@ -827,7 +668,6 @@ export function createBvhKernels() {
   return {
     LEAF, MEDIAN, SAH,
     emptyBounds, mergeBounds, computeBoxes, scanBounds, binScales, resetBins, binRange,
-    sweepBins, decideSplit, binUnion, withinDepthBudget, partitionSampled, partitionRange, medianSplit,
-    createSplitter, settleLeaf, createSubtreeBuild,
+    sweepBins, decideSplit, withinDepthBudget, partitionInPlace, medianSplit, createSplitter, createSubtreeBuild,
   };
 }

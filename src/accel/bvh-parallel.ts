@@ -83,13 +83,8 @@ export async function buildOnWorkers(
   } catch {
     memory = undefined;
   }
-  const ids0 = memory ? new Uint32Array(memory.buffer, layout!.ids0, n) : new Uint32Array(new SharedArrayBuffer(n * 4));
-  const slots = memory ? undefined : {
-    boxes0: new Float32Array(new SharedArrayBuffer(n * 32)),
-    ids0,
-    boxes1: new Float32Array(new SharedArrayBuffer(n * 32)),
-    ids1: new Uint32Array(new SharedArrayBuffer(n * 4)),
-  };
+  const ids = memory ? new Uint32Array(memory.buffer, layout!.ids, n) : new Uint32Array(new SharedArrayBuffer(n * 4));
+  const slots = memory ? undefined : { boxes: new Float32Array(new SharedArrayBuffer(n * 32)), ids };
   const abort = new Int32Array(new SharedArrayBuffer(4));
   const onAbort = (): void => void Atomics.store(abort, 0, 1);
   run.signal?.addEventListener('abort', onAbort, { once: true });
@@ -137,7 +132,7 @@ export async function buildOnWorkers(
     // 4. Layout.
     const assembled = await assemble(root, rootBounds, run);
     aborted();
-    const triangleOrder = ids0.slice();
+    const triangleOrder = ids.slice();
     const buildTimeMs = performance.now() - startTime;
 
     return {

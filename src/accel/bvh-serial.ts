@@ -13,14 +13,6 @@ export const BVH_MAX_DEPTH = 48;
 /** Bytes of one packed node; mirrors `bvhNodeLayout` (boundsMin, leftOrFirst, boundsMax, primitiveCount). */
 export const BVH_NODE_BYTES = 32;
 
-/**
- * Nodes of at least twice this many triangles choose their split plane from an evenly strided
- * sample of 8192..16383 of them in 32 bins. Measured on the benchmark meshes the tree's SAH cost
- * rises by at most ~0.6% against binning every triangle, while the top levels cost one pass over
- * the triangles (the partition) instead of two.
- */
-export const BVH_SAMPLE_SIZE = 8192;
-
 /** Triangles per chunk of the AABB prepass (the time-sliced build may yield between chunks). */
 const BOUNDS_CHUNK = 65536;
 
@@ -55,7 +47,7 @@ export function resolveBuildParams(positions: Float32Array, options: BvhBuildOpt
   const leafSizeCap = Math.max(maxLeafSize, positiveInt(options.leafSizeCap, 16, 'leafSizeCap'));
   const maxDepth = Math.min(BVH_MAX_DEPTH, options.maxDepth ?? BVH_MAX_DEPTH);
   if (!Number.isInteger(maxDepth) || maxDepth < 0) throw new RangeError(`buildBvh: maxDepth must be a non-negative integer`);
-  return { maxLeafSize, binCount, leafSizeCap, maxDepth, sampleSize: BVH_SAMPLE_SIZE };
+  return { maxLeafSize, binCount, leafSizeCap, maxDepth };
 }
 
 /** The tree of an empty scene: one inverted root box that no slab test can enter. */
@@ -94,19 +86,14 @@ function allocateSlots(n: number, params: BvhBuildParams, useWasm: boolean): { s
       const instance = new WebAssembly.Instance(module, { env: { memory } });
       const buffer = memory.buffer;
       return {
-        slots: {
-          boxes0: new Float32Array(buffer, layout.boxes0, n * 8),
-          boxes1: new Float32Array(buffer, layout.boxes1, n * 8),
-          ids0: new Uint32Array(buffer, layout.ids0, n),
-          ids1: new Uint32Array(buffer, layout.ids1, n),
-        },
+        slots: { boxes: new Float32Array(buffer, layout.boxes, n * 8), ids: new Uint32Array(buffer, layout.ids, n) },
         wasm: { exports: instance.exports as unknown as BvhWasmBackend['exports'], buffer, scratch: 0 },
       };
     } catch {
       // Out of memory for one contiguous block, or an engine without SIMD: the JS loops do the same.
     }
   }
-  return { slots: { boxes0: new Float32Array(n * 8), ids0: new Uint32Array(n), boxes1: new Float32Array(n * 8), ids1: new Uint32Array(n) } };
+  return { slots: { boxes: new Float32Array(n * 8), ids: new Uint32Array(n) } };
 }
 
 /**
@@ -130,7 +117,7 @@ export function createSerialBuildState(positions: Float32Array, params: BvhBuild
     if (done) return true;
     while (boundsDone < n) {
       const end = Math.min(n, boundsDone + BOUNDS_CHUNK);
-      k.computeBoxes(positions, slots.boxes0, slots.ids0, boundsDone, end, rootBounds, 0);
+      k.computeBoxes(positions, slots.boxes, slots.ids, boundsDone, end, rootBounds, 0);
       boundsDone = end;
       if (performance.now() >= deadline && boundsDone < n) return false;
     }
@@ -149,7 +136,7 @@ export function createSerialBuildState(positions: Float32Array, params: BvhBuild
       nodes: exact,
       nodeCount,
       // Out of WebAssembly memory into a buffer of its own (the memory is dropped with the build).
-      triangleOrder: wasm ? slots.ids0.slice() : slots.ids0,
+      triangleOrder: wasm ? slots.ids.slice() : slots.ids,
       depth: build!.depthReached(),
       leafCount: build!.leafCount(),
       sahCost: computeSahCost(exact, { nodeCount }),

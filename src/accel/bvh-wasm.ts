@@ -214,11 +214,11 @@ function loadAxisParams(code: Code, prm: number, axisOff: number, k: number, m: 
 }
 
 function binFunction(): FunctionDef {
-  // (p, end, step, lastI, binBase, cntBase, binStride, prm): empties bins 0..lastI of each axis, then
-  // bins every slot of [p, end) (`step` bytes apart) on all three axes; prm: the f64 parameters.
-  const [p, end, step, lastI, binBase, cntBase, binStride, prm] = [0, 1, 2, 3, 4, 5, 6, 7];
-  const [k0, k1, k2, m0, m1, m2, last] = [8, 9, 10, 11, 12, 13, 14];
-  const [mn, mx, c, f, q, addr, b1, b2, n1, n2] = [15, 16, 17, 18, 19, 20, 21, 22, 23, 24];
+  // (p, end, lastI, binBase, cntBase, binStride, prm): empties bins 0..lastI of each axis, then bins
+  // every slot from address p to end on all three axes; prm: the f64 parameters.
+  const [p, end, lastI, binBase, cntBase, binStride, prm] = [0, 1, 2, 3, 4, 5, 6];
+  const [k0, k1, k2, m0, m1, m2, last] = [7, 8, 9, 10, 11, 12, 13];
+  const [mn, mx, c, f, q, addr, b1, b2, n1, n2] = [14, 15, 16, 17, 18, 19, 20, 21, 22, 23];
   const code = new Code();
   loadParams(code, prm, [k0, k1, k2, m0, m1, m2, last]);
   // Empty the bins first: (min +inf, max -inf, count 0) for bins 0..lastI of each axis.
@@ -250,76 +250,76 @@ function binFunction(): FunctionDef {
     code.get(addr).get(addr).vload(16).get(mx).simd(SIMD.f32x4Pmax).vstore(16);
     code.get(q).i32(2).op(OP.i32Shl).get(cnt).op(OP.i32Add).tee(addr).get(addr).mem(OP.i32Load, 2).i32(1).op(OP.i32Add).mem(OP.i32Store, 2);
   });
-  code.get(p).get(step).op(OP.i32Add).tee(p).get(end).op(OP.i32LtU).op(OP.brIf, 0);
+  code.get(p).i32(32).op(OP.i32Add).tee(p).get(end).op(OP.i32LtU).op(OP.brIf, 0);
   code.op(OP.end, OP.end);
-  return { name: 'bin', params: [I32, I32, I32, I32, I32, I32, I32, I32], results: [], locals: [F64, F64, F64, F64, F64, F64, F64, V128, V128, V128, F64, I32, I32, I32, I32, I32, I32], body: code };
+  return { name: 'bin', params: [I32, I32, I32, I32, I32, I32, I32], results: [], locals: [F64, F64, F64, F64, F64, F64, F64, V128, V128, V128, F64, I32, I32, I32, I32, I32, I32], body: code };
+}
+
+/** Pushes the clamped bin of the slot at address local `p` on the axis at byte offset local `axisOff`. */
+function slotBin(code: Code, p: number, axisOff: number, k: number, m: number, last: number, lastI: number, a: number, f: number): void {
+  code.get(p).get(axisOff).op(OP.i32Add).tee(a).mem(OP.f32Load, 2).get(a).mem(OP.f32Load, 2, 16).op(OP.f32Add)
+    .op(OP.f64PromoteF32).get(m).op(OP.f64Sub).get(k).op(OP.f64Mul).set(f);
+  binIndex(code, f, last, lastI);
+}
+
+/** Folds the slot vectors (mn, mx) and their sum c into a side's box (bmin, bmax) and centroid bounds (cmin, cmax). */
+function accumulate(code: Code, mn: number, mx: number, c: number, bmin: number, bmax: number, cmin: number, cmax: number): void {
+  code.get(bmin).get(mn).simd(SIMD.f32x4Pmin).set(bmin).get(bmax).get(mx).simd(SIMD.f32x4Pmax).set(bmax);
+  code.get(cmin).get(c).simd(SIMD.f32x4Pmin).set(cmin).get(cmax).get(c).simd(SIMD.f32x4Pmax).set(cmax);
 }
 
 function partitionFunction(): FunctionDef {
-  // (p, end, dl, dr, ip, il, ir, axisOff, lastI, plane, out, prm)
-  const [p, end, dl, dr, ip, il, ir, axisOff, lastI, plane, out, prm] = [0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11];
-  const [k, m, last] = [12, 13, 14];
-  const [mn, mx, c, lmin, lmax, rmin, rmax, f, a] = [15, 16, 17, 18, 19, 20, 21, 22, 23];
+  // (i, j, ii, ij, axisOff, lastI, plane, out, prm) -> left count. In-place Hoare partition of the
+  // slots from address i to address j (the last slot; ids from ii to ij) by bin < plane, as
+  // bvh-kernels' partitionInPlace: both sides' boxes and centroid bounds go to out (8 vectors:
+  // left box min, max, left centroid min, max, then the right side's).
+  const [i, j, ii, ij, axisOff, lastI, plane, out, prm] = [0, 1, 2, 3, 4, 5, 6, 7, 8];
+  const [k, m, last, f] = [9, 10, 11, 12];
+  const [mnI, mxI, cI, mnJ, mxJ, cJ, lbmin, lbmax, lcmin, lcmax, rbmin, rbmax, rcmin, rcmax] = [13, 14, 15, 16, 17, 18, 19, 20, 21, 22, 23, 24, 25, 26];
+  const [a, start, id] = [27, 28, 29];
   const code = new Code();
   loadAxisParams(code, prm, axisOff, k, m, last);
-  code.vconstF32(INF, INF, INF, INF).tee(lmin).set(rmin).vconstF32(-INF, -INF, -INF, -INF).tee(lmax).set(rmax);
-  code.op(OP.block, 0x40).get(p).get(end).op(OP.i32GeU).op(OP.brIf, 0);
-  code.op(OP.loop, 0x40);
-  code.get(p).vload(0).set(mn).get(p).vload(16).set(mx).get(mn).get(mx).simd(SIMD.f32x4Add).set(c);
-  code.get(p).get(axisOff).op(OP.i32Add).tee(a).mem(OP.f32Load, 2).get(a).mem(OP.f32Load, 2, 16).op(OP.f32Add)
-    .op(OP.f64PromoteF32).get(m).op(OP.f64Sub).get(k).op(OP.f64Mul).set(f);
-  binIndex(code, f, last, lastI);
-  code.get(plane).op(OP.i32LtS);
-  code.op(OP.if, 0x40);
-  code.get(dl).get(mn).vstore(0).get(dl).get(mx).vstore(16).get(il).get(ip).mem(OP.i32Load, 2).mem(OP.i32Store, 2);
-  code.get(dl).i32(32).op(OP.i32Add).set(dl).get(il).i32(4).op(OP.i32Add).set(il);
-  code.get(lmin).get(c).simd(SIMD.f32x4Pmin).set(lmin).get(lmax).get(c).simd(SIMD.f32x4Pmax).set(lmax);
-  code.op(OP.else);
-  code.get(dr).get(mn).vstore(0).get(dr).get(mx).vstore(16).get(ir).get(ip).mem(OP.i32Load, 2).mem(OP.i32Store, 2);
-  code.get(dr).i32(32).op(OP.i32Add).set(dr).get(ir).i32(4).op(OP.i32Add).set(ir);
-  code.get(rmin).get(c).simd(SIMD.f32x4Pmin).set(rmin).get(rmax).get(c).simd(SIMD.f32x4Pmax).set(rmax);
-  code.op(OP.end);
-  code.get(ip).i32(4).op(OP.i32Add).set(ip);
-  code.get(p).i32(32).op(OP.i32Add).tee(p).get(end).op(OP.i32LtU).op(OP.brIf, 0);
-  code.op(OP.end, OP.end);
-  code.get(out).get(lmin).vstore(0).get(out).get(lmax).vstore(16).get(out).get(rmin).vstore(32).get(out).get(rmax).vstore(48);
-  return { name: 'partition', params: [I32, I32, I32, I32, I32, I32, I32, I32, I32, I32, I32, I32], results: [], locals: [F64, F64, F64, V128, V128, V128, V128, V128, V128, V128, F64, I32], body: code };
-}
-
-function partitionSampledFunction(): FunctionDef {
-  // (p, end, dl, dr, ip, il, ir, axisOff, lastI, plane, out, prm) -> left count; dr/ir address the LAST slot/id.
-  const [p, end, dl, dr, ip, il, ir, axisOff, lastI, plane, out, prm] = [0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11];
-  const [k, m, last] = [12, 13, 14];
-  const [mn, mx, c, lbmin, lbmax, lcmin, lcmax, rbmin, rbmax, rcmin, rcmax, f, a, nl] = [15, 16, 17, 18, 19, 20, 21, 22, 23, 24, 25, 26, 27, 28];
-  const code = new Code();
-  loadAxisParams(code, prm, axisOff, k, m, last);
+  code.get(i).set(start);
   code.vconstF32(INF, INF, INF, INF).tee(lbmin).tee(lcmin).tee(rbmin).set(rcmin);
   code.vconstF32(-INF, -INF, -INF, -INF).tee(lbmax).tee(lcmax).tee(rbmax).set(rcmax);
-  code.op(OP.block, 0x40).get(p).get(end).op(OP.i32GeU).op(OP.brIf, 0);
-  code.op(OP.loop, 0x40);
-  code.get(p).vload(0).set(mn).get(p).vload(16).set(mx).get(mn).get(mx).simd(SIMD.f32x4Add).set(c);
-  code.get(p).get(axisOff).op(OP.i32Add).tee(a).mem(OP.f32Load, 2).get(a).mem(OP.f32Load, 2, 16).op(OP.f32Add)
-    .op(OP.f64PromoteF32).get(m).op(OP.f64Sub).get(k).op(OP.f64Mul).set(f);
-  binIndex(code, f, last, lastI);
-  code.get(plane).op(OP.i32LtS);
-  code.op(OP.if, 0x40);
-  code.get(dl).get(mn).vstore(0).get(dl).get(mx).vstore(16).get(il).get(ip).mem(OP.i32Load, 2).mem(OP.i32Store, 2);
-  code.get(dl).i32(32).op(OP.i32Add).set(dl).get(il).i32(4).op(OP.i32Add).set(il).get(nl).i32(1).op(OP.i32Add).set(nl);
-  code.get(lbmin).get(mn).simd(SIMD.f32x4Pmin).set(lbmin).get(lbmax).get(mx).simd(SIMD.f32x4Pmax).set(lbmax);
-  code.get(lcmin).get(c).simd(SIMD.f32x4Pmin).set(lcmin).get(lcmax).get(c).simd(SIMD.f32x4Pmax).set(lcmax);
-  code.op(OP.else);
-  code.get(dr).get(mn).vstore(0).get(dr).get(mx).vstore(16).get(ir).get(ip).mem(OP.i32Load, 2).mem(OP.i32Store, 2);
-  code.get(dr).i32(32).op(OP.i32Sub).set(dr).get(ir).i32(4).op(OP.i32Sub).set(ir);
-  code.get(rbmin).get(mn).simd(SIMD.f32x4Pmin).set(rbmin).get(rbmax).get(mx).simd(SIMD.f32x4Pmax).set(rbmax);
-  code.get(rcmin).get(c).simd(SIMD.f32x4Pmin).set(rcmin).get(rcmax).get(c).simd(SIMD.f32x4Pmax).set(rcmax);
-  code.op(OP.end);
-  code.get(ip).i32(4).op(OP.i32Add).set(ip);
-  code.get(p).i32(32).op(OP.i32Add).tee(p).get(end).op(OP.i32LtU).op(OP.brIf, 0);
+  code.op(OP.block, 0x40).op(OP.loop, 0x40); // $outer: block depth 1, loop depth 0
+  // Advance i over left slots.
+  code.op(OP.block, 0x40).op(OP.loop, 0x40);
+  code.get(i).get(j).op(0x4b /* i32.gt_u */).op(OP.brIf, 1);
+  code.get(i).vload(0).set(mnI).get(i).vload(16).set(mxI).get(mnI).get(mxI).simd(SIMD.f32x4Add).set(cI);
+  slotBin(code, i, axisOff, k, m, last, lastI, a, f);
+  code.get(plane).op(OP.i32GeS).op(OP.brIf, 1);
+  accumulate(code, mnI, mxI, cI, lbmin, lbmax, lcmin, lcmax);
+  code.get(i).i32(32).op(OP.i32Add).set(i).get(ii).i32(4).op(OP.i32Add).set(ii);
+  code.op(OP.br, 0);
+  code.op(OP.end, OP.end);
+  // Retreat j over right slots.
+  code.op(OP.block, 0x40).op(OP.loop, 0x40);
+  code.get(i).get(j).op(0x4b /* i32.gt_u */).op(OP.brIf, 1);
+  code.get(j).vload(0).set(mnJ).get(j).vload(16).set(mxJ).get(mnJ).get(mxJ).simd(SIMD.f32x4Add).set(cJ);
+  slotBin(code, j, axisOff, k, m, last, lastI, a, f);
+  code.get(plane).op(OP.i32LtS).op(OP.brIf, 1);
+  accumulate(code, mnJ, mxJ, cJ, rbmin, rbmax, rcmin, rcmax);
+  code.get(j).i32(32).op(OP.i32Sub).set(j).get(ij).i32(4).op(OP.i32Sub).set(ij);
+  code.op(OP.br, 0);
+  code.op(OP.end, OP.end);
+  // Done when the cursors crossed; else swap the right slot at i with the left slot at j.
+  code.get(i).get(j).op(OP.i32GeU).op(OP.brIf, 1);
+  code.get(i).get(mnJ).vstore(0).get(i).get(mxJ).vstore(16).get(j).get(mnI).vstore(0).get(j).get(mxI).vstore(16);
+  code.get(ii).mem(OP.i32Load, 2).set(id).get(ii).get(ij).mem(OP.i32Load, 2).mem(OP.i32Store, 2).get(ij).get(id).mem(OP.i32Store, 2);
+  accumulate(code, mnJ, mxJ, cJ, lbmin, lbmax, lcmin, lcmax);
+  accumulate(code, mnI, mxI, cI, rbmin, rbmax, rcmin, rcmax);
+  code.get(i).i32(32).op(OP.i32Add).set(i).get(ii).i32(4).op(OP.i32Add).set(ii);
+  code.get(j).i32(32).op(OP.i32Sub).set(j).get(ij).i32(4).op(OP.i32Sub).set(ij);
+  code.op(OP.br, 0);
   code.op(OP.end, OP.end);
   code.get(out).get(lbmin).vstore(0).get(out).get(lbmax).vstore(16).get(out).get(lcmin).vstore(32).get(out).get(lcmax).vstore(48);
   code.get(out).get(rbmin).vstore(64).get(out).get(rbmax).vstore(80).get(out).get(rcmin).vstore(96).get(out).get(rcmax).vstore(112);
-  code.get(nl);
-  return { name: 'partitionSampled', params: [I32, I32, I32, I32, I32, I32, I32, I32, I32, I32, I32, I32], results: [I32], locals: [F64, F64, F64, V128, V128, V128, V128, V128, V128, V128, V128, V128, V128, V128, F64, I32, I32], body: code };
+  code.get(i).get(start).op(OP.i32Sub).i32(5).op(OP.i32ShrU);
+  return {
+    name: 'partition', params: [I32, I32, I32, I32, I32, I32, I32, I32, I32], results: [I32],
+    locals: [F64, F64, F64, F64, V128, V128, V128, V128, V128, V128, V128, V128, V128, V128, V128, V128, V128, V128, I32, I32, I32], body: code,
+  };
 }
 
 function scanFunction(): FunctionDef {
@@ -349,18 +349,15 @@ function halfArea(code: Code, mn: number, mx: number, dx: number, dy: number, dz
 
 function sweepFunction(): FunctionDef {
   // (binBase, cntBase, bins, binStride, mask, tmp, out, prm): the SAH plane search of
-  // bvh-kernels' sweepBins; out: f64 best cost, i32 axis, plane, left count, binned count, then at
-  // out + 32 the best split's left box (min, max vectors) and right box. tmp: f64 suffix areas,
-  // i32 suffix counts, then suffix boxes (32 bytes per bin), binStride of each.
+  // bvh-kernels' sweepBins; out: f64 best cost, i32 axis, plane, left count, binned count. tmp: f64
+  // suffix areas, then i32 suffix counts, binStride of each.
   const [binBase, cntBase, bins, binStride, mask, tmp, out, prm] = [0, 1, 2, 3, 4, 5, 6, 7];
   const parentArea = 8;
   const [a, b, q, rn, ln, vmin, vmax, cost, best, bestAxis, bestPlane, bestLeftN, binned, dx, dy, dz, rnb, axisBase] =
     [9, 10, 11, 12, 13, 14, 15, 16, 17, 18, 19, 20, 21, 22, 23, 24, 25, 26];
-  const [bestLmin, bestLmax, bestRmin, bestRmax, boxes] = [27, 28, 29, 30, 31];
   const code = new Code();
   code.get(prm).mem(OP.f64Load, 3, 56).set(parentArea);
   code.f64(INF).set(best).i32(-1).set(bestAxis);
-  code.get(binStride).i32(12).op(OP.i32Mul).get(tmp).op(OP.i32Add).set(boxes);
   code.op(OP.block, 0x40).op(OP.loop, 0x40); // axes
   code.get(mask).get(a).op(0x75 /* i32.shr_s */).i32(1).op(OP.i32And).op(OP.if, 0x40);
   code.get(a).get(binStride).op(OP.i32Mul).set(axisBase);
@@ -372,7 +369,6 @@ function sweepFunction(): FunctionDef {
   code.get(rn).get(q).i32(2).op(OP.i32Shl).get(cntBase).op(OP.i32Add).mem(OP.i32Load, 2).op(OP.i32Add).set(rn);
   code.get(q).i32(5).op(OP.i32Shl).get(binBase).op(OP.i32Add).set(q);
   code.get(vmin).get(q).vload(0).simd(SIMD.f32x4Pmin).set(vmin).get(vmax).get(q).vload(16).simd(SIMD.f32x4Pmax).set(vmax);
-  code.get(b).i32(5).op(OP.i32Shl).get(boxes).op(OP.i32Add).tee(q).get(vmin).vstore(0).get(q).get(vmax).vstore(16);
   code.get(b).i32(3).op(OP.i32Shl).get(tmp).op(OP.i32Add);
   halfArea(code, vmin, vmax, dx, dy, dz);
   code.f64(0).get(rn).i32(0).op(OP.i32GtS).op(OP.select).mem(OP.f64Store, 3);
@@ -396,8 +392,6 @@ function sweepFunction(): FunctionDef {
   code.get(b).i32(1).op(OP.i32Add).i32(3).op(OP.i32Shl).get(tmp).op(OP.i32Add).mem(OP.f64Load, 3).get(rnb).op(OP.f64ConvertI32S).op(OP.f64Mul);
   code.op(OP.f64Add).op(OP.f64Add).tee(cost).get(best).op(OP.f64Lt).op(OP.if, 0x40);
   code.get(cost).set(best).get(a).set(bestAxis).get(b).i32(1).op(OP.i32Add).set(bestPlane).get(ln).set(bestLeftN);
-  code.get(vmin).set(bestLmin).get(vmax).set(bestLmax);
-  code.get(bestPlane).i32(5).op(OP.i32Shl).get(boxes).op(OP.i32Add).tee(q).vload(0).set(bestRmin).get(q).vload(16).set(bestRmax);
   code.op(OP.end, OP.end);
   code.get(b).i32(1).op(OP.i32Add).tee(b).get(bins).i32(1).op(OP.i32Sub).op(OP.i32LtS).op(OP.brIf, 0);
   code.op(OP.end, OP.end);
@@ -407,10 +401,9 @@ function sweepFunction(): FunctionDef {
   code.get(out).get(best).mem(OP.f64Store, 3);
   code.get(out).get(bestAxis).mem(OP.i32Store, 2, 8).get(out).get(bestPlane).mem(OP.i32Store, 2, 12);
   code.get(out).get(bestLeftN).mem(OP.i32Store, 2, 16).get(out).get(binned).mem(OP.i32Store, 2, 20);
-  code.get(out).get(bestLmin).vstore(32).get(out).get(bestLmax).vstore(48).get(out).get(bestRmin).vstore(64).get(out).get(bestRmax).vstore(80);
   return {
     name: 'sweep', params: [I32, I32, I32, I32, I32, I32, I32, I32], results: [],
-    locals: [F64, I32, I32, I32, I32, I32, V128, V128, F64, F64, I32, I32, I32, I32, F64, F64, F64, I32, I32, V128, V128, V128, V128, I32], body: code,
+    locals: [F64, I32, I32, I32, I32, I32, V128, V128, F64, F64, I32, I32, I32, I32, F64, F64, F64, I32, I32], body: code,
   };
 }
 
@@ -419,7 +412,7 @@ function sweepFunction(): FunctionDef {
  * build, plain otherwise (an import's kind must match the memory it is instantiated with).
  */
 export function bvhWasmModuleBytes(shared: boolean): Uint8Array {
-  return encodeModule([binFunction(), partitionFunction(), partitionSampledFunction(), scanFunction(), sweepFunction()], shared);
+  return encodeModule([binFunction(), partitionFunction(), scanFunction(), sweepFunction()], shared);
 }
 
 const compiled = new Map<boolean, WebAssembly.Module | null>();
@@ -447,27 +440,20 @@ export function compiledBvhWasm(shared: boolean): WebAssembly.Module | null {
 export interface WasmSlotLayout {
   /** Per-thread scratch (bins and results), `scratchBytes` apart from 0. */
   scratchBytes: number;
-  boxes0: number;
-  boxes1: number;
-  ids0: number;
-  ids1: number;
+  boxes: number;
+  ids: number;
   pages: number;
 }
 
-/**
- * [scratch x threads][boxes0: n * 32][boxes1: n * 32][ids0: n * 4][ids1: n * 4], in 64 KiB pages;
- * null beyond the 4 GiB of a 32-bit memory.
- */
+/** [scratch x threads][boxes: n * 32][ids: n * 4], in 64 KiB pages; null beyond the 4 GiB of a 32-bit memory. */
 export function wasmSlotLayout(n: number, threads: number, binCount: number): WasmSlotLayout | null {
-  const binStride = Math.max(binCount, 32);
-  // Bins (32 bytes) and counts (4) per axis, 8 result vectors, the sweep's result (96), its suffix
-  // arrays (44 per bin) and the f64 parameters (64).
-  const scratchBytes = Math.ceil((3 * binStride * 36 + 128 + 96 + binStride * 44 + 64) / 64) * 64;
-  const boxes0 = threads * scratchBytes;
-  const boxes1 = boxes0 + n * 32;
-  const ids0 = boxes1 + n * 32;
-  const ids1 = ids0 + n * 4;
-  const pages = Math.max(1, Math.ceil((ids1 + n * 4) / 65536));
+  const binStride = binCount;
+  // Bins (32 bytes) and counts (4) per axis, 8 result vectors, the sweep's result (32), its suffix
+  // arrays (12 per bin) and the f64 parameters (64).
+  const scratchBytes = Math.ceil((3 * binStride * 36 + 128 + 32 + binStride * 12 + 64) / 64) * 64;
+  const boxes = threads * scratchBytes;
+  const ids = boxes + n * 32;
+  const pages = Math.max(1, Math.ceil((ids + n * 4) / 65536));
   if (pages > 65536) return null;
-  return { scratchBytes, boxes0, boxes1, ids0, ids1, pages };
+  return { scratchBytes, boxes, ids, pages };
 }

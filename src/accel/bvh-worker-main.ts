@@ -32,18 +32,13 @@ export interface WorkerBuildMessage {
 
 export function bvhWorkerMain(createKernels: () => BvhKernels, host: BvhWorkerHost): void {
   const k = createKernels();
-  interface Layout { boxes0: number; boxes1: number; ids0: number; ids1: number; pages: number }
+  interface Layout { boxes: number; ids: number; pages: number }
   /** Views of a build's slots in WebAssembly memory, and the loops bound to it. */
   const wasmSlots = (memory: WebAssembly.Memory, module: WebAssembly.Module, layout: Layout, n: number, scratch: number): { slots: SlotBuffers; wasm: BvhWasmBackend } => {
     const instance = new WebAssembly.Instance(module, { env: { memory } });
     const buffer = memory.buffer;
     return {
-      slots: {
-        boxes0: new Float32Array(buffer, layout.boxes0, n * 8),
-        boxes1: new Float32Array(buffer, layout.boxes1, n * 8),
-        ids0: new Uint32Array(buffer, layout.ids0, n),
-        ids1: new Uint32Array(buffer, layout.ids1, n),
-      },
+      slots: { boxes: new Float32Array(buffer, layout.boxes, n * 8), ids: new Uint32Array(buffer, layout.ids, n) },
       wasm: { exports: instance.exports as unknown as BvhWasmBackend['exports'], buffer, scratch },
     };
   };
@@ -87,15 +82,15 @@ export function bvhWorkerMain(createKernels: () => BvhKernels, host: BvhWorkerHo
       const layout = m.layout as Layout | undefined;
       const { slots, wasm } = m.module && layout
         ? wasmSlots(new WebAssembly.Memory({ initial: layout.pages }), m.module as WebAssembly.Module, layout, n, 0)
-        : { slots: { boxes0: new Float32Array(n * 8), ids0: new Uint32Array(n), boxes1: new Float32Array(n * 8), ids1: new Uint32Array(n) }, wasm: undefined };
+        : { slots: { boxes: new Float32Array(n * 8), ids: new Uint32Array(n) }, wasm: undefined };
       const rootBounds = new Float64Array(12);
       k.emptyBounds(rootBounds, 0);
-      k.computeBoxes(positions, slots.boxes0, slots.ids0, 0, n, rootBounds, 0);
+      k.computeBoxes(positions, slots.boxes, slots.ids, 0, n, rootBounds, 0);
       const nodes = new ArrayBuffer(Math.max(1, 2 * n - 1) * 32);
       const b = k.createSubtreeBuild({ ...slots, count: n, slotBase: 0, depth: 0, rootBounds, nodes, params, wasm });
       b.step(Infinity);
       const exact = nodes.slice(0, b.nodeCount() * 32);
-      const order = wasm ? slots.ids0.slice() : slots.ids0;
+      const order = wasm ? slots.ids.slice() : slots.ids;
       return {
         reply: { nodes: exact, nodeCount: b.nodeCount(), leafCount: b.leafCount(), depth: b.depthReached(), order },
         transfer: [exact, order.buffer as ArrayBuffer],
@@ -106,7 +101,7 @@ export function bvhWorkerMain(createKernels: () => BvhKernels, host: BvhWorkerHo
     if (m.op === 'boxes') {
       const bounds = new Float64Array(12);
       k.emptyBounds(bounds, 0);
-      k.computeBoxes(build.positions, build.slots.boxes0, build.slots.ids0, m.from as number, m.to as number, bounds, 0);
+      k.computeBoxes(build.positions, build.slots.boxes, build.slots.ids, m.from as number, m.to as number, bounds, 0);
       return { reply: { bounds }, transfer: [] };
     }
     const start = m.start as number;
@@ -116,17 +111,14 @@ export function bvhWorkerMain(createKernels: () => BvhKernels, host: BvhWorkerHo
     if (m.op === 'split') {
       const out = new Float64Array(24);
       const mid = build.split(build.slots, start, count, depth, bounds, 0, bounds, 6, out);
-      if (mid < 0) k.settleLeaf(build.slots, start, count, depth);
       return { reply: { mid, out }, transfer: [] };
     }
     if (m.op === 'subtree') {
       const s = build.slots;
       const nodes = new ArrayBuffer((2 * count - 1) * 32);
       const b = k.createSubtreeBuild({
-        boxes0: s.boxes0.subarray(start * 8, (start + count) * 8),
-        ids0: s.ids0.subarray(start, start + count),
-        boxes1: s.boxes1.subarray(start * 8, (start + count) * 8),
-        ids1: s.ids1.subarray(start, start + count),
+        boxes: s.boxes.subarray(start * 8, (start + count) * 8),
+        ids: s.ids.subarray(start, start + count),
         count,
         slotBase: start,
         depth,
