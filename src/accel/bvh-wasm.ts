@@ -28,7 +28,9 @@ const OP = {
   select: 0x1b,
 } as const;
 const SIMD = {
-  load: 0x00, store: 0x0b, const: 0x0c, f32x4ExtractLane: 0x1f, f32x4Add: 0xe4, f32x4Pmin: 0xea, f32x4Pmax: 0xeb,
+  load: 0x00, store: 0x0b, const: 0x0c, i8x16Shuffle: 0x0d, f64x2Splat: 0x14, i32x4ExtractLane: 0x1b,
+  f32x4ExtractLane: 0x1f, f64x2ReplaceLane: 0x22, f64x2PromoteLowF32x4: 0x5f, f32x4Add: 0xe4, f32x4Pmin: 0xea,
+  f32x4Pmax: 0xeb, f64x2Sub: 0xf1, f64x2Mul: 0xf2, f64x2Pmin: 0xf6, f64x2Pmax: 0xf7, i32x4TruncSatF64x2SZero: 0xfc,
 } as const;
 const TRUNC_SAT_F64_S = 0x02; // 0xFC prefix
 
@@ -215,12 +217,26 @@ function loadAxisParams(code: Code, prm: number, axisOff: number, k: number, m: 
 
 function binFunction(): FunctionDef {
   // (p, end, lastI, binBase, cntBase, binStride, prm): empties bins 0..lastI of each axis, then bins
-  // every slot from address p to end on all three axes; prm: the f64 parameters.
+  // every slot from address p to end on all three axes; prm: the f64 parameters. The three bin
+  // indices come from f64x2 lanes (x, y) and (z, 0): trunc(min(max(f, 0), last)) with pmin/pmax
+  // equals the scalar f >= last ? last : f > 0 ? trunc(f) : 0, NaN included (it gives 0).
   const [p, end, lastI, binBase, cntBase, binStride, prm] = [0, 1, 2, 3, 4, 5, 6];
-  const [k0, k1, k2, m0, m1, m2, last] = [7, 8, 9, 10, 11, 12, 13];
-  const [mn, mx, c, f, q, addr, b1, b2, n1, n2] = [14, 15, 16, 17, 18, 19, 20, 21, 22, 23];
+  const [kxy, kz, mxy, mz, lastv, zero, qv] = [7, 8, 9, 10, 11, 12, 13];
+  const [mn, mx, c, q, addr, b1, b2, n1, n2] = [14, 15, 16, 17, 18, 19, 20, 21, 22];
   const code = new Code();
-  loadParams(code, prm, [k0, k1, k2, m0, m1, m2, last]);
+  // (k0, k1), (k2, 0), (m0, m1), (m2, 0), (last, last), (0, 0).
+  const pair = (lo: number, hi: number | null, into: number): void => {
+    code.get(prm).mem(OP.f64Load, 3, lo * 8).simd(SIMD.f64x2Splat);
+    if (hi === null) code.f64(0);
+    else code.get(prm).mem(OP.f64Load, 3, hi * 8);
+    code.simd(SIMD.f64x2ReplaceLane).op(1).set(into);
+  };
+  pair(0, 1, kxy);
+  pair(2, null, kz);
+  pair(3, 4, mxy);
+  pair(5, null, mz);
+  pair(6, 6, lastv);
+  code.vconstF32(0, 0, 0, 0).set(zero);
   // Empty the bins first: (min +inf, max -inf, count 0) for bins 0..lastI of each axis.
   for (let axis = 0; axis < 3; axis++) {
     code.i32(0).set(q);
@@ -240,11 +256,20 @@ function binFunction(): FunctionDef {
   code.op(OP.block, 0x40).get(p).get(end).op(OP.i32GeU).op(OP.brIf, 0);
   code.op(OP.loop, 0x40);
   code.get(p).vload(0).set(mn).get(p).vload(16).set(mx).get(mn).get(mx).simd(SIMD.f32x4Add).set(c);
-  const axes: Array<[number, number, number, number]> = [[k0, m0, binBase, cntBase], [k1, m1, b1, n1], [k2, m2, b2, n2]];
-  axes.forEach(([k, m, base, cnt], axis) => {
-    code.get(c).lane(axis).op(OP.f64PromoteF32).get(m).op(OP.f64Sub).get(k).op(OP.f64Mul).set(f);
-    binIndex(code, f, last, lastI);
-    code.set(q);
+  // Bin indices: lanes 0, 1 of qv from (x, y), lanes 2, 3 from (z, 0).
+  const clampedIndex = (lanes: () => void, k: number, m: number): void => {
+    code.get(lastv).get(zero);
+    lanes();
+    code.simd(SIMD.f64x2PromoteLowF32x4).get(m).simd(SIMD.f64x2Sub).get(k).simd(SIMD.f64x2Mul)
+      .simd(SIMD.f64x2Pmax).simd(SIMD.f64x2Pmin).simd(SIMD.i32x4TruncSatF64x2SZero);
+  };
+  clampedIndex(() => code.get(c), kxy, mxy);
+  clampedIndex(() => code.get(c).get(c).simd(SIMD.i8x16Shuffle).op(8, 9, 10, 11, 12, 13, 14, 15, 8, 9, 10, 11, 12, 13, 14, 15), kz, mz);
+  // (qx, qy, 0, 0) and (qz, 0, 0, 0) -> (qx, qy, qz, 0)
+  code.simd(SIMD.i8x16Shuffle).op(0, 1, 2, 3, 4, 5, 6, 7, 16, 17, 18, 19, 20, 21, 22, 23).set(qv);
+  const axes: Array<[number, number]> = [[binBase, cntBase], [b1, n1], [b2, n2]];
+  axes.forEach(([base, cnt], axis) => {
+    code.get(qv).simd(SIMD.i32x4ExtractLane).op(axis).set(q);
     code.get(q).i32(5).op(OP.i32Shl).get(base).op(OP.i32Add).set(addr);
     code.get(addr).get(addr).vload(0).get(mn).simd(SIMD.f32x4Pmin).vstore(0);
     code.get(addr).get(addr).vload(16).get(mx).simd(SIMD.f32x4Pmax).vstore(16);
@@ -252,7 +277,10 @@ function binFunction(): FunctionDef {
   });
   code.get(p).i32(32).op(OP.i32Add).tee(p).get(end).op(OP.i32LtU).op(OP.brIf, 0);
   code.op(OP.end, OP.end);
-  return { name: 'bin', params: [I32, I32, I32, I32, I32, I32, I32], results: [], locals: [F64, F64, F64, F64, F64, F64, F64, V128, V128, V128, F64, I32, I32, I32, I32, I32, I32], body: code };
+  return {
+    name: 'bin', params: [I32, I32, I32, I32, I32, I32, I32], results: [],
+    locals: [V128, V128, V128, V128, V128, V128, V128, V128, V128, V128, I32, I32, I32, I32, I32, I32], body: code,
+  };
 }
 
 /** Pushes the clamped bin of the slot at address local `p` on the axis at byte offset local `axisOff`. */
