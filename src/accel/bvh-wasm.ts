@@ -199,14 +199,10 @@ function binIndex(code: Code, f: number, last: number, lastI: number): void {
 
 const INF = Infinity;
 
-/**
- * f64 parameters come through memory, not arguments: a JS call passing doubles to WebAssembly may box
- * each one, and the build makes hundreds of thousands of calls. Layout at `prm`: k0, k1, k2, m0, m1,
- * m2, last bin (as f64), parent half area.
- */
-function loadParams(code: Code, prm: number, locals: number[]): void {
-  locals.forEach((local, i) => code.get(prm).mem(OP.f64Load, 3, i * 8).set(local));
-}
+// f64 parameters come through memory, not arguments: a JS call passing doubles to WebAssembly may box
+// each one, and the build makes hundreds of thousands of calls. Layout at `prm`: k0, k1, k2, m0, m1,
+// m2, last bin (as f64), parent half area.
+
 
 /** k and m of the axis whose byte offset in a slot (axis * 4) is in local `axisOff`, and `last`. */
 function loadAxisParams(code: Code, prm: number, axisOff: number, k: number, m: number, last: number): void {
