@@ -203,7 +203,6 @@ const INF = Infinity;
 // each one, and the build makes hundreds of thousands of calls. Layout at `prm`: k0, k1, k2, m0, m1,
 // m2, last bin (as f64), parent half area.
 
-
 /** k and m of the axis whose byte offset in a slot (axis * 4) is in local `axisOff`, and `last`. */
 function loadAxisParams(code: Code, prm: number, axisOff: number, k: number, m: number, last: number): void {
   code.get(prm).get(axisOff).i32(1).op(OP.i32Shl).op(OP.i32Add).mem(OP.f64Load, 3, 0).set(k);
