@@ -1,8 +1,9 @@
 /**
  * The BVH build's hot loops as a small WebAssembly module with 128-bit SIMD, generated here as
  * bytes (no toolchain, no binary blob in the repository). WebAssembly 2.0 (core spec, sec. 5:
- * binary format) with fixed-width SIMD (v128) and non-trapping float-to-int conversions; every
- * engine that runs WebGPU runs it.
+ * binary format) with fixed-width SIMD (v128), non-trapping float-to-int conversions and bulk
+ * memory (memory.fill); every engine that runs WebGPU runs it, and where compiling fails the JS
+ * loops take over (`compiledBvhWasm` returns null).
  *
  * Slot layout (shared with the JS loops in bvh-kernels.ts): 32 bytes per slot, two f32x4 vectors
  * (min x, y, z, 0) and (max x, y, z, 0); triangle ids in a separate u32 array. Bins: 32 bytes each
@@ -232,22 +233,21 @@ function binFunction(): FunctionDef {
   pair(5, null, mz);
   pair(6, 6, lastv);
   code.vconstF32(0, 0, 0, 0).set(zero);
-  // Empty the bins first: (min +inf, max -inf, count 0) for bins 0..lastI of each axis.
-  for (let axis = 0; axis < 3; axis++) {
-    code.i32(0).set(q);
-    code.op(OP.loop, 0x40);
-    code.get(binStride).i32(axis).op(OP.i32Mul).get(q).op(OP.i32Add).set(addr);
-    code.get(addr).i32(5).op(OP.i32Shl).get(binBase).op(OP.i32Add).vconstF32(INF, INF, INF, INF).vstore(0);
-    code.get(addr).i32(5).op(OP.i32Shl).get(binBase).op(OP.i32Add).vconstF32(-INF, -INF, -INF, -INF).vstore(16);
-    code.get(addr).i32(2).op(OP.i32Shl).get(cntBase).op(OP.i32Add).i32(0).mem(OP.i32Store, 2);
-    code.get(q).i32(1).op(OP.i32Add).tee(q).get(lastI).op(0x4c /* i32.le_s */).op(OP.brIf, 0);
-    code.op(OP.end);
-  }
   // Axis bases: bins at binBase + a * binStride * 32, counts at cntBase + a * binStride * 4.
   code.get(binBase).get(binStride).i32(5).op(OP.i32Shl).op(OP.i32Add).tee(b1)
     .get(binStride).i32(5).op(OP.i32Shl).op(OP.i32Add).set(b2);
   code.get(cntBase).get(binStride).i32(2).op(OP.i32Shl).op(OP.i32Add).tee(n1)
     .get(binStride).i32(2).op(OP.i32Shl).op(OP.i32Add).set(n2);
+  // Empty the bins first: (min +inf, max -inf, count 0) for bins 0..lastI of each axis.
+  for (const [base, cnt] of [[binBase, cntBase], [b1, n1], [b2, n2]] as const) {
+    code.get(base).set(addr).get(lastI).i32(1).op(OP.i32Add).i32(5).op(OP.i32Shl).get(base).op(OP.i32Add).set(q);
+    code.op(OP.loop, 0x40);
+    code.get(addr).vconstF32(INF, INF, INF, INF).vstore(0).get(addr).vconstF32(-INF, -INF, -INF, -INF).vstore(16);
+    code.get(addr).i32(32).op(OP.i32Add).tee(addr).get(q).op(OP.i32LtU).op(OP.brIf, 0);
+    code.op(OP.end);
+    // memory.fill(cnt, 0, (lastI + 1) * 4)
+    code.get(cnt).i32(0).get(lastI).i32(1).op(OP.i32Add).i32(2).op(OP.i32Shl).op(0xfc, 0x0b, 0x00);
+  }
   code.op(OP.block, 0x40).get(p).get(end).op(OP.i32GeU).op(OP.brIf, 0);
   code.op(OP.loop, 0x40);
   code.get(p).vload(0).set(mn).get(p).vload(16).set(mx).get(mn).get(mx).simd(SIMD.f32x4Add).set(c);
