@@ -4,6 +4,7 @@
  *   --no-baseline    | BENCH_BASELINE=0     measure the current version only
  *   --rounds <n>     | BENCH_ROUNDS         child processes per version, alternated (default 3)
  *   --no-bvh         | BENCH_BVH=0          skip the BVH build benchmark
+ *   --bvh-only       | BENCH_ONLY=bvh       run the BVH build benchmark alone
  * The command line wins over the environment. BENCH_SPP is read by the path tracer harnesses.
  */
 import { parseArgs } from 'node:util';
@@ -19,6 +20,8 @@ export interface BenchOptions {
   /** Child processes per version; versions alternate (baseline, current, baseline, current, ...). */
   rounds: number;
   bvh: boolean;
+  /** Run the path tracer comparison (off with --bvh-only / BENCH_ONLY=bvh). */
+  pathTracer: boolean;
 }
 
 export interface BaselineFile {
@@ -55,6 +58,7 @@ export function parseBenchOptions(
       'no-baseline': { type: 'boolean' },
       rounds: { type: 'string' },
       'no-bvh': { type: 'boolean' },
+      'bvh-only': { type: 'boolean' },
     },
     strict: true,
     allowPositionals: false,
@@ -70,6 +74,8 @@ export function parseBenchOptions(
 
   const roundsText = values.rounds ?? env.BENCH_ROUNDS;
   const rounds = roundsText === undefined || roundsText === '' ? DEFAULT_ROUNDS : positiveInteger(roundsText, values.rounds !== undefined ? '--rounds' : 'BENCH_ROUNDS');
-  const bvh = !values['no-bvh'] && !(env.BENCH_BVH !== undefined && OFF.has(env.BENCH_BVH.toLowerCase()));
-  return { baseline, rounds, bvh };
+  const bvhOnly = values['bvh-only'] === true || env.BENCH_ONLY?.toLowerCase() === 'bvh';
+  const bvh = bvhOnly || (!values['no-bvh'] && !(env.BENCH_BVH !== undefined && OFF.has(env.BENCH_BVH.toLowerCase())));
+  if (bvhOnly && values['no-bvh']) throw new Error('--bvh-only and --no-bvh exclude each other');
+  return { baseline, rounds, bvh, pathTracer: !bvhOnly };
 }

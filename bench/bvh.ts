@@ -1,17 +1,24 @@
 /**
- * CPU BVH construction benchmark: our binned SAH builder (src/accel/bvh-builder.ts) beside
- * three-mesh-bvh's MeshBVH with its SAH and CENTER strategies, on the same deterministic 100k- and
- * 1M-triangle meshes in the same process. Figures, not pass/fail: build time (median of a few runs)
- * and the SAH cost of each tree under one cost model (C_trav = C_isect = 1, bvh-sah.ts), as ratios.
+ * CPU BVH construction benchmark: our binned SAH builder (src/accel/bvh-builder.ts), single-threaded
+ * (`buildBvh`) and on workers (`buildBvhParallel`, the path `buildBvhAsync` takes for large meshes),
+ * beside three-mesh-bvh's MeshBVH with its SAH and CENTER strategies, on the same deterministic 100k-
+ * and 1M-triangle meshes in the same process. Figures, not pass/fail: build time (median, min and max
+ * of a few runs) and the SAH cost of each tree under one cost model (C_trav = C_isect = 1,
+ * bvh-sah.ts), as ratios.
  *
  * Settings (chosen to be comparable):
- * - ours: maxLeafSize 4 (smaller nodes become leaves), leaf cap 16, 16 bins, depth <= 48.
+ * - ours: maxLeafSize 4 (smaller nodes become leaves), leaf cap 16, 16 bins, depth <= 48, WebAssembly
+ *   SIMD loops; parallel: `BVH_BENCH_WORKERS` workers
+ *   (default navigator.hardwareConcurrency).
  * - three-mesh-bvh: targetLeafSize 4, maxDepth 48, indirect: true (it permutes an index array, like
  *   our triangleOrder, instead of rewriting the geometry), verbose: false. Its SAH uses 8 bins (or
  *   every centroid in small nodes) and C_isect = 1.25; CENTER splits the longest axis at its middle.
- * Times are wall clock around the whole call (ours includes the final SAH evaluation, ~1% of it).
+ * The machine is shared and noisy, so the builders take turns run by run (one run of each, then the
+ * next round) and every run's time is kept. Times are wall clock around the whole call (ours
+ * includes the final SAH evaluation, ~1% of it). The worker pool is started by an untimed warm-up;
+ * its cold start is reported on its own.
  */
-import { buildBvh } from '../src/accel/bvh-builder.ts';
+import { buildBvh, buildBvhParallel } from '../src/accel/bvh-builder.ts';
 import { computeThreeMeshBvhSahCost } from '../src/accel/bvh-sah.ts';
 
 export interface BvhBenchRow {
@@ -20,6 +27,8 @@ export interface BvhBenchRow {
   builder: string;
   runs: number;
   buildMsMedian: number;
+  buildMsMin: number;
+  buildMsMax: number;
   buildMsAll: number[];
   sahCost: number;
   nodeCount: number;
@@ -27,6 +36,7 @@ export interface BvhBenchRow {
 
 export interface BvhBenchRatio {
   mesh: string;
+  ours: string;
   versus: string;
   /** ours / theirs: < 1 means we build faster. */
   buildTimeRatio: number;
@@ -37,6 +47,11 @@ export interface BvhBenchRatio {
 export interface BvhBenchResult {
   name: 'bvh';
   node: string;
+  /** 1-minute load averages before and after (os.loadavg): other work on the machine. */
+  loadAverage: { before: number; after: number };
+  /** First `buildBvhParallel` call of the process (starting the workers) on the first mesh, ms. */
+  parallelColdStartMs: number;
+  workers: number;
   threeMeshBvhVersion: string;
   settings: Record<string, unknown>;
   rows: BvhBenchRow[];
@@ -113,7 +128,9 @@ function median(values: number[]): number {
   return s.length % 2 ? s[m]! : (s[m - 1]! + s[m]!) / 2;
 }
 
-export async function runBvhBenchmark(options: { sizes?: number[]; log?: (line: string) => void } = {}): Promise<BvhBenchResult> {
+type Builder = [name: string, build: () => Promise<{ sahCost: number; nodeCount: number }>];
+
+export async function runBvhBenchmark(options: { sizes?: number[]; runs?: number; log?: (line: string) => void } = {}): Promise<BvhBenchResult> {
   const log = options.log ?? ((line: string) => console.log(line));
   const began = performance.now();
   // Loaded through variables so the type checker does not need three's (absent) type declarations.
@@ -122,61 +139,86 @@ export async function runBvhBenchmark(options: { sizes?: number[]; log?: (line: 
   const THREE = (await import(threeSpec)) as ThreeModule;
   const TMB = (await import(bvhSpec)) as MeshBvhModule;
   const { readFile } = await import('node:fs/promises');
+  const { loadavg } = await import('node:os');
   const tmbPackage = JSON.parse(await readFile(new URL('../node_modules/three-mesh-bvh/package.json', import.meta.url), 'utf8')) as { version: string };
+  const envWorkers = Number(process.env.BVH_BENCH_WORKERS);
+  const workers = Number.isInteger(envWorkers) && envWorkers > 0 ? envWorkers : Math.max(1, Math.min(8, navigator.hardwareConcurrency || 2));
+  const loadBefore = loadavg()[0]!;
 
   const sizes = options.sizes ?? [100_000, 1_000_000];
   const rows: BvhBenchRow[] = [];
   const ratios: BvhBenchRatio[] = [];
+  let parallelColdStartMs = NaN;
   for (const triangles of sizes) {
     const positions = benchmarkMesh(triangles);
     const mesh = `terrain+clutter ${triangles >= 1e6 ? `${triangles / 1e6}M` : `${triangles / 1e3}k`}`;
-    const runs = triangles >= 500_000 ? 3 : 5;
+    const runs = options.runs ?? (triangles >= 500_000 ? 5 : 7);
     const geometry = new THREE.BufferGeometry();
     geometry.setAttribute('position', new THREE.BufferAttribute(positions, 3));
 
-    const builders: Array<[string, () => { sahCost: number; nodeCount: number }]> = [
-      ['ours (binned SAH)', () => {
+    const builders: Builder[] = [
+      ['ours, 1 thread', async () => {
         const r = buildBvh(positions, { maxLeafSize: 4, binCount: 16 });
         return { sahCost: r.sahCost, nodeCount: r.nodeCount };
       }],
+      [`ours, ${workers} workers`, async () => {
+        const r = await buildBvhParallel(positions, { maxLeafSize: 4, binCount: 16, workers });
+        return { sahCost: r.sahCost, nodeCount: r.nodeCount };
+      }],
       ...([['three-mesh-bvh SAH', TMB.SAH], ['three-mesh-bvh CENTER', TMB.CENTER]] as const).map(
-        ([name, strategy]) =>
-          [name, () => {
-            const bvh = new TMB.MeshBVH(geometry, { strategy, targetLeafSize: 4, maxDepth: 48, indirect: true, verbose: false });
-            const root = bvh._roots[0]!;
-            return { sahCost: computeThreeMeshBvhSahCost(root), nodeCount: root.byteLength / 32 };
-          }] as [string, () => { sahCost: number; nodeCount: number }],
+        ([name, strategy]): Builder => [name, async () => {
+          const bvh = new TMB.MeshBVH(geometry, { strategy, targetLeafSize: 4, maxDepth: 48, indirect: true, verbose: false });
+          const root = bvh._roots[0]!;
+          return { sahCost: computeThreeMeshBvhSahCost(root), nodeCount: root.byteLength / 32 };
+        }],
       ),
     ];
-    // One untimed warm-up per builder (JIT), on the small mesh only.
-    if (triangles < 500_000) for (const [, build] of builders) build();
-    for (const [builder, build] of builders) {
-      const times: number[] = [];
-      let last = { sahCost: 0, nodeCount: 0 };
-      for (let k = 0; k < runs; k++) {
-        const t0 = performance.now();
-        last = build();
-        times.push(performance.now() - t0);
-      }
-      const row: BvhBenchRow = { mesh, triangles, builder, runs, buildMsMedian: median(times), buildMsAll: times, sahCost: last.sahCost, nodeCount: last.nodeCount };
-      rows.push(row);
-      log(`  ${mesh}: ${builder.padEnd(22)} ${row.buildMsMedian.toFixed(0).padStart(6)} ms (median of ${runs})  SAH ${row.sahCost.toFixed(2)}  nodes ${row.nodeCount}`);
+    if (Number.isNaN(parallelColdStartMs)) {
+      const t0 = performance.now();
+      await builders[1]![1]();
+      parallelColdStartMs = performance.now() - t0;
+      log(`  ${mesh}: first buildBvhParallel call (starts ${workers} workers): ${parallelColdStartMs.toFixed(0)} ms`);
     }
+    // One untimed warm-up per builder (JIT), on the first mesh only.
+    if (triangles === sizes[0]) for (const [, build] of builders) await build();
+    const times = builders.map(() => [] as number[]);
+    const last = builders.map(() => ({ sahCost: 0, nodeCount: 0 }));
+    for (let k = 0; k < runs; k++) {
+      for (let b = 0; b < builders.length; b++) {
+        const t0 = performance.now();
+        last[b] = await builders[b]![1]();
+        times[b]!.push(performance.now() - t0);
+      }
+    }
+    builders.forEach(([builder], b) => {
+      const all = times[b]!;
+      const row: BvhBenchRow = {
+        mesh, triangles, builder, runs,
+        buildMsMedian: median(all), buildMsMin: Math.min(...all), buildMsMax: Math.max(...all), buildMsAll: all,
+        sahCost: last[b]!.sahCost, nodeCount: last[b]!.nodeCount,
+      };
+      rows.push(row);
+      log(`  ${mesh}: ${builder.padEnd(22)} ${row.buildMsMedian.toFixed(0).padStart(6)} ms median of ${runs} (${row.buildMsMin.toFixed(0)}-${row.buildMsMax.toFixed(0)})  SAH ${row.sahCost.toFixed(2)}  nodes ${row.nodeCount}`);
+    });
     geometry.dispose();
-    const ours = rows.find((r) => r.mesh === mesh && r.builder.startsWith('ours'))!;
-    for (const theirs of rows.filter((r) => r.mesh === mesh && !r.builder.startsWith('ours'))) {
-      ratios.push({ mesh, versus: theirs.builder, buildTimeRatio: ours.buildMsMedian / theirs.buildMsMedian, sahCostRatio: ours.sahCost / theirs.sahCost });
+    for (const ours of rows.filter((r) => r.mesh === mesh && r.builder.startsWith('ours'))) {
+      for (const theirs of rows.filter((r) => r.mesh === mesh && !r.builder.startsWith('ours'))) {
+        ratios.push({ mesh, ours: ours.builder, versus: theirs.builder, buildTimeRatio: ours.buildMsMedian / theirs.buildMsMedian, sahCostRatio: ours.sahCost / theirs.sahCost });
+      }
     }
   }
   return {
     name: 'bvh',
     node: process.version,
+    loadAverage: { before: loadBefore, after: loadavg()[0]! },
+    parallelColdStartMs,
+    workers,
     threeMeshBvhVersion: tmbPackage.version,
     settings: {
       costModel: 'C_trav = 1, C_isect = 1, surface areas relative to the root',
-      ours: { maxLeafSize: 4, leafSizeCap: 16, binCount: 16, maxDepth: 48 },
+      ours: { maxLeafSize: 4, leafSizeCap: 16, binCount: 16, maxDepth: 48, workers, wasm: true },
       threeMeshBvh: { targetLeafSize: 4, maxDepth: 48, indirect: true },
-      timing: 'wall clock per build; median of 5 runs (100k, after one warm-up) or 3 runs (1M)',
+      timing: 'wall clock per build, builders interleaved run by run; median (min-max) of 7 runs (100k, after one warm-up) or 5 runs (1M)',
     },
     rows,
     ratios,

@@ -57,11 +57,18 @@ if (options.bvh) {
   const bvh = await runBvhBenchmark();
   results.bvh = bvh;
   console.table(
-    bvh.rows.map((r) => ({ mesh: r.mesh, builder: r.builder, 'build ms (median)': Math.round(r.buildMsMedian), runs: r.runs, 'SAH cost': Number(r.sahCost.toFixed(2)), nodes: r.nodeCount })),
+    bvh.rows.map((r) => ({
+      mesh: r.mesh, builder: r.builder, 'build ms (median)': Math.round(r.buildMsMedian), 'min-max': `${Math.round(r.buildMsMin)}-${Math.round(r.buildMsMax)}`,
+      runs: r.runs, 'SAH cost': Number(r.sahCost.toFixed(2)), nodes: r.nodeCount,
+    })),
   );
   console.table(
-    bvh.ratios.map((r) => ({ mesh: r.mesh, 'ours / theirs': r.versus, 'build time': Number(r.buildTimeRatio.toFixed(2)), 'SAH cost': Number(r.sahCostRatio.toFixed(3)) })),
+    bvh.ratios.map((r) => ({
+      mesh: r.mesh, ours: r.ours, versus: r.versus, 'time ours/theirs': Number(r.buildTimeRatio.toFixed(2)),
+      'speed-up': Number((1 / r.buildTimeRatio).toFixed(2)), 'SAH ours/theirs': Number(r.sahCostRatio.toFixed(3)),
+    })),
   );
+  console.log(`load average (1 min) before ${bvh.loadAverage.before.toFixed(2)}, after ${bvh.loadAverage.after.toFixed(2)}; parallel cold start ${bvh.parallelColdStartMs.toFixed(0)} ms`);
 } else {
   console.log('BVH build benchmark skipped (--no-bvh / BENCH_BVH=0)');
 }
@@ -121,7 +128,7 @@ function printScene(scene: SceneComparison, names: Record<'baseline' | 'current'
 }
 
 let currentFailed = false;
-if (existsSync(new URL('./pathtracer.ts', import.meta.url))) {
+if (options.pathTracer && existsSync(new URL('./pathtracer.ts', import.meta.url))) {
   console.log(`\nPath tracer: child processes, versions alternated, ${options.rounds} round(s), BENCH_SPP=${process.env.BENCH_SPP ?? '(default)'}`);
   const versions: PathTracerVersion[] = [];
   let baseline: BaselineCheckout | { ok: false; reason: string } | null = null;

@@ -1,4 +1,13 @@
-export { buildBvh, buildBvhAsync, BVH_MAX_DEPTH, BVH_NODE_BYTES } from './bvh-builder.ts';
+export {
+  buildBvh,
+  buildBvhAsync,
+  buildBvhParallel,
+  terminateBvhWorkers,
+  warmBvhWorkers,
+  BVH_MAX_DEPTH,
+  BVH_NODE_BYTES,
+  BVH_PARALLEL_MIN_TRIANGLES,
+} from './bvh-builder.ts';
 export type { BvhBuildResult, BvhBuildOptions, BvhAsyncBuildOptions } from './bvh-builder.ts';
 export { computeSahCost, computeThreeMeshBvhSahCost } from './bvh-sah.ts';
 export type { SahCostOptions } from './bvh-sah.ts';

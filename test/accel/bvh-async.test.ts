@@ -1,8 +1,10 @@
-import { test } from 'node:test';
+import { after, test } from 'node:test';
 import assert from 'node:assert/strict';
 import { setImmediate as immediate } from 'node:timers';
-import { buildBvh, buildBvhAsync } from '../../src/accel/bvh-builder.ts';
+import { buildBvh, buildBvhAsync, terminateBvhWorkers } from '../../src/accel/bvh-builder.ts';
 import { duplicatedSoup, gridMesh, randomSoup } from './bvh-fixtures.ts';
+
+after(() => terminateBvhWorkers());
 
 test('buildBvhAsync produces the same tree as buildBvh', async () => {
   for (const positions of [randomSoup(20000, 51), gridMesh(60), duplicatedSoup(2000, 3, 52)]) {
@@ -20,7 +22,7 @@ test('buildBvhAsync produces the same tree as buildBvh', async () => {
   }
 });
 
-test('buildBvhAsync yields to the event loop during a large build; buildBvh does not', async () => {
+test('buildBvhAsync on this thread (workers: 0) yields to the event loop during a large build; buildBvh does not', async () => {
   const positions = randomSoup(300000, 53, 100, 1);
   // A ticker that needs one event-loop turn per tick; the longest gap between ticks is the longest
   // stretch the build kept the loop blocked.
@@ -46,7 +48,7 @@ test('buildBvhAsync yields to the event loop during a large build; buildBvh does
   assert.equal(syncSeen.turns, 0, 'the synchronous build holds the event loop throughout');
 
   const asyncWatch = watch();
-  const result = await buildBvhAsync(positions, { sliceMs: 8 });
+  const result = await buildBvhAsync(positions, { sliceMs: 8, workers: 0 });
   const seen = asyncWatch.stop();
   assert.deepEqual(new Uint8Array(result.nodes), new Uint8Array(sync.nodes));
   assert.ok(seen.turns >= 10, `only ${seen.turns} event-loop turns during a ${sync.buildTimeMs.toFixed(0)} ms build`);
@@ -55,11 +57,13 @@ test('buildBvhAsync yields to the event loop during a large build; buildBvh does
   console.log(`# sync ${sync.buildTimeMs.toFixed(0)} ms; async ${result.buildTimeMs.toFixed(0)} ms of work, ${seen.turns} turns, longest block ${seen.longestGapMs.toFixed(1)} ms`);
 });
 
-test('buildBvhAsync stops when aborted', async () => {
-  const controller = new AbortController();
+test('buildBvhAsync stops when aborted, on this thread and on workers', async () => {
   const positions = randomSoup(200000, 54, 100, 1);
-  const pending = buildBvhAsync(positions, { sliceMs: 2, signal: controller.signal, onProgress: () => controller.abort(new Error('cancelled by test')) });
-  await assert.rejects(pending, /cancelled by test/);
+  for (const workers of [0, 2]) {
+    const controller = new AbortController();
+    const pending = buildBvhAsync(positions, { sliceMs: 2, workers, signal: controller.signal, onProgress: () => controller.abort(new Error('cancelled by test')) });
+    await assert.rejects(pending, /cancelled by test/);
+  }
   const already = new AbortController();
   already.abort();
   await assert.rejects(buildBvhAsync(positions, { signal: already.signal }), { name: 'AbortError' });

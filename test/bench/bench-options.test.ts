@@ -40,6 +40,12 @@ test('rounds and BVH knobs; bad values are rejected', () => {
   assert.throws(() => parseBenchOptions(['--bogus'], {}, file));
   assert.equal(parseBenchOptions(['--no-bvh'], {}, file).bvh, false);
   assert.equal(parseBenchOptions([], { BENCH_BVH: '0' }, file).bvh, false);
+  assert.equal(parseBenchOptions([], {}, file).pathTracer, true);
+  for (const o of [parseBenchOptions(['--bvh-only'], {}, file), parseBenchOptions([], { BENCH_ONLY: 'bvh' }, file)]) {
+    assert.equal(o.bvh, true);
+    assert.equal(o.pathTracer, false);
+  }
+  assert.throws(() => parseBenchOptions(['--bvh-only', '--no-bvh'], {}, file), /exclude/);
 });
 
 test('bench/baseline.json: a ref is required, the description is optional', () => {
