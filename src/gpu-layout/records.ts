@@ -183,7 +183,7 @@ export const frameUniformsLayout: StructLayout = defineStructLayout('FrameUnifor
 // ---- Transport state (bind group 3, per dispatch) --------------------------------------------------
 
 /** The persistent state of one path (one pixel sample of the wave), indexed by its slot. */
-export const pathStateLayout: StructLayout = defineStructLayout('PathState', 2, [
+export const pathStateLayout: StructLayout = defineStructLayout('PathState', 3, [
   ['throughput', 'vec3f', 'path weight beta'],
   ['pixel', 'u32', 'global pixel index (y * width + x)'],
   ['prevPosition', 'vec3f', 'last scattering vertex (the camera for camera rays)'],
@@ -193,41 +193,40 @@ export const pathStateLayout: StructLayout = defineStructLayout('PathState', 2, 
   ['depth', 'u32', 'scattering vertices so far (pbrt-v4 depth)'],
   ['flags', 'u32', 'PATH_FLAG_* bits'],
   ['etaScale', 'f32', 'accumulated eta^2 for Russian roulette across refraction'],
-  ['coneWidth', 'f32', 'ray cone width at prevPosition'],
-  ['coneSpread', 'f32', 'ray cone spread angle'],
+  ['coneSpread', 'f32', 'ray cone spread angle (the width travels with the ray)'],
   ['media', 'u32', 'nested medium stack: four 8-bit medium ids, innermost in the low byte'],
 ]);
 
 /** A ray waiting for closest-hit intersection; the ray queues are the two halves of `rays`. */
-export const rayWorkItemLayout: StructLayout = defineStructLayout('RayWorkItem', 1, [
+export const rayWorkItemLayout: StructLayout = defineStructLayout('RayWorkItem', 2, [
   ['origin', 'vec3f'],
   ['slot', 'u32', 'path slot'],
   ['direction', 'vec3f', 'unit length'],
   ['tMax', 'f32'],
+  ['coneWidth', 'f32', 'ray cone width at the origin (texture level of detail)'],
+  ['coneSpread', 'f32', 'ray cone spread angle'],
 ]);
 
 /**
  * Output of intersection: hits are appended from the front of the shading queue, misses (escaped
  * rays) from the back, so one buffer holds both queues.
  */
-export const shadingWorkItemLayout: StructLayout = defineStructLayout('ShadingWorkItem', 1, [
-  ['direction', 'vec3f'],
+export const shadingWorkItemLayout: StructLayout = defineStructLayout('ShadingWorkItem', 2, [
+  ['origin', 'vec3f', 'ray origin'],
   ['slot', 'u32'],
+  ['direction', 'vec3f'],
+  ['t', 'f32', 'hit distance'],
   ['u', 'f32', 'barycentric of v1'],
   ['v', 'f32', 'barycentric of v2'],
-  ['t', 'f32', 'hit distance'],
-  ['instance', 'u32'],
-  ['primitive', 'u32', 'triangle within the instance mesh'],
-  ['reserved0', 'u32'],
-  ['reserved1', 'u32'],
-  ['reserved2', 'u32'],
+  ['primitive', 'u32', 'the hit record in primitives (BVH order), INDEX_NONE for an escaped ray'],
+  ['coneWidth', 'f32', 'ray cone width at the hit'],
 ]);
 
 /**
  * The compact per-hit record material evaluation hands to the scatter kernel: the surface frame
  * and the resolved BSDF parameters after texture fetches and normal mapping.
  */
-export const surfaceRecordLayout: StructLayout = defineStructLayout('SurfaceRecord', 1, [
+export const surfaceRecordLayout: StructLayout = defineStructLayout('SurfaceRecord', 2, [
   ['position', 'vec3f'],
   ['slot', 'u32'],
   ['wo', 'vec3f', 'unit direction towards the previous vertex'],
@@ -247,7 +246,7 @@ export const surfaceRecordLayout: StructLayout = defineStructLayout('SurfaceReco
   ['specular', 'f32', 'KHR_materials_specular factor'],
   ['transmission', 'f32'],
   ['specularColor', 'vec3f'],
-  ['hitDistance', 'f32'],
+  ['coneWidth', 'f32', 'ray cone width at the hit'],
 ]);
 
 /** An any-hit query carrying the contribution it adds if unoccluded (NEE, pbrt-v4 style). */
