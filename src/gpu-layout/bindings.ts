@@ -33,7 +33,7 @@ export const pathTracerBindings = {
   alphaPrimitives: { group: G.geometry, binding: 3, kind: 'storage', access: 'read', type: 'array<AlphaPrimitive>', doc: 'alpha-test data of MASK and BLEND primitives' },
   instances: { group: G.geometry, binding: 4, kind: 'storage', access: 'read', type: 'array<Instance>', doc: 'mesh placements' },
   indices: { group: G.geometry, binding: 5, kind: 'storage', access: 'read', type: 'array<u32>', doc: 'triangle lists of every mesh' },
-  vertices: { group: G.geometry, binding: 6, kind: 'storage', access: 'read', type: 'array<Vertex>', doc: 'indexed vertex streams of every mesh' },
+  vertexStreams: { group: G.geometry, binding: 6, kind: 'storage', access: 'read', type: 'array<u32>', doc: 'vertex attribute streams of every mesh (instances hold the stream offsets)' },
   // Group 1: materials and textures.
   materials: { group: G.materials, binding: 0, kind: 'storage', access: 'read', type: 'array<vec4f>', doc: 'material heap: cores, extension blocks, texture bindings, texture infos' },
   textureAtlas: { group: G.materials, binding: 1, kind: 'texture', type: 'texture_2d_array<f32>', sampleType: 'unfilterable-float', viewDimension: '2d-array', doc: 'every material texture with its mip chain (rgba8unorm)' },

@@ -71,9 +71,21 @@ export const INSTANCE_FLAG_HAS_UV0 = 1 << 5;
 export const INSTANCE_FLAG_HAS_UV1 = 1 << 6;
 export const INSTANCE_FLAG_HAS_COLORS = 1 << 7;
 
-export const VERTEX_FLAG_BITANGENT_NEGATIVE = 1;
-/** The vertex's normal was zero or degenerate: triangles using it shade with the geometric normal. */
-export const VERTEX_FLAG_NORMAL_INVALID = 2;
+/**
+ * Words per vertex of each vertex stream (the shared `vertexStreams` buffer holds, per mesh, one
+ * stream per attribute it has): position xyz (f32), normal (octahedral snorm16x2), tangent
+ * (octahedral snorm16x2, bitangent sign as f32), colour (unorm8x4), uv0 and uv1 (f32 pairs).
+ */
+export const VERTEX_POSITION_WORDS = 3;
+export const VERTEX_NORMAL_WORDS = 1;
+export const VERTEX_TANGENT_WORDS = 2;
+export const VERTEX_COLOR_WORDS = 1;
+export const VERTEX_UV_WORDS = 2;
+/**
+ * A normal-stream word that pack2x16snorm never produces (-32768 in both halves): the vertex's
+ * normal was zero or degenerate, and triangles using it shade with the geometric normal.
+ */
+export const VERTEX_NORMAL_INVALID = 0x80008000;
 
 export const MATERIAL_FLAG_DOUBLE_SIDED = 1;
 export const MATERIAL_ALPHA_MODE_SHIFT = 1;
@@ -138,8 +150,12 @@ export const gpuConstants: Readonly<Record<string, number>> = Object.freeze({
   INSTANCE_FLAG_HAS_UV0,
   INSTANCE_FLAG_HAS_UV1,
   INSTANCE_FLAG_HAS_COLORS,
-  VERTEX_FLAG_BITANGENT_NEGATIVE,
-  VERTEX_FLAG_NORMAL_INVALID,
+  VERTEX_POSITION_WORDS,
+  VERTEX_NORMAL_WORDS,
+  VERTEX_TANGENT_WORDS,
+  VERTEX_COLOR_WORDS,
+  VERTEX_UV_WORDS,
+  VERTEX_NORMAL_INVALID,
   MATERIAL_FLAG_DOUBLE_SIDED,
   MATERIAL_ALPHA_MODE_SHIFT,
   MATERIAL_ALPHA_MODE_MASK,

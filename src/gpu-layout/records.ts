@@ -1,4 +1,5 @@
 import { defineStructLayout, type StructLayout } from './struct-layout.ts';
+import { VERTEX_COLOR_WORDS, VERTEX_NORMAL_WORDS, VERTEX_POSITION_WORDS, VERTEX_TANGENT_WORDS, VERTEX_UV_WORDS } from './constants.ts';
 
 /**
  * The GPU record contracts of the renderer: the single source of truth for the WGSL structs
@@ -50,33 +51,24 @@ export const alphaPrimitiveLayout: StructLayout = defineStructLayout('AlphaPrimi
 ]);
 
 /** A placement of a mesh: its object-to-world transform and where its streams start. */
-export const instanceLayout: StructLayout = defineStructLayout('Instance', 1, [
+export const instanceLayout: StructLayout = defineStructLayout('Instance', 2, [
   ['objectToWorld0', 'vec4f', 'row 0 of the affine 3x4 object-to-world matrix'],
   ['objectToWorld1', 'vec4f', 'row 1'],
   ['objectToWorld2', 'vec4f', 'row 2'],
   ['normalToWorld0', 'vec4f', 'row 0 of the inverse transpose of the linear part'],
   ['normalToWorld1', 'vec4f', 'row 1'],
   ['normalToWorld2', 'vec4f', 'row 2'],
-  ['baseVertex', 'u32', 'first vertex of the mesh in vertices'],
-  ['firstIndex', 'u32', 'first index of the mesh in indices'],
+  ['positions', 'u32', 'word offset of the mesh position stream in vertexStreams'],
+  ['normals', 'u32', 'word offset of the normal stream, or INDEX_NONE'],
+  ['tangents', 'u32', 'word offset of the tangent stream, or INDEX_NONE'],
+  ['colors', 'u32', 'word offset of the COLOR_0 stream, or INDEX_NONE'],
+  ['uv0', 'u32', 'word offset of the TEXCOORD_0 stream, or INDEX_NONE'],
+  ['uv1', 'u32', 'word offset of the TEXCOORD_1 stream, or INDEX_NONE'],
+  ['firstIndex', 'u32', 'first index of the mesh in indices (indices are mesh-local vertex numbers)'],
   ['material', 'u32', 'materials-heap offset of the MaterialCore'],
   ['flags', 'u32', 'INSTANCE_FLAG_* bits and the shape kind'],
   ['lightBase', 'u32', 'light index of the mesh triangle 0 when the material emits, else INDEX_NONE'],
   ['objectId', 'u32', 'user-facing instance id (AOVs)'],
-  ['reserved0', 'u32'],
-  ['reserved1', 'u32'],
-]);
-
-/** One vertex of the indexed vertex streams shared by every mesh (object space). */
-export const vertexLayout: StructLayout = defineStructLayout('Vertex', 1, [
-  ['position', 'vec3f'],
-  ['normal', 'u32', 'octahedral snorm16x2 (0 when the mesh has none)'],
-  ['tangent', 'u32', 'octahedral snorm16x2'],
-  ['color', 'u32', 'linear rgba unorm8x4 (COLOR_0)'],
-  ['uv0', 'vec2f'],
-  ['uv1', 'vec2f'],
-  ['flags', 'u32', 'VERTEX_FLAG_* bits (bitangent sign)'],
-  ['reserved', 'u32'],
 ]);
 
 // ---- Materials and textures (bind group 1) --------------------------------------------------------
@@ -304,7 +296,6 @@ export const wavefrontRecordLayouts = {
   BvhNode: bvhNodeLayout,
   AlphaPrimitive: alphaPrimitiveLayout,
   Instance: instanceLayout,
-  Vertex: vertexLayout,
   MaterialCore: materialCoreLayout,
   TextureInfo: textureInfoLayout,
   TextureBinding: textureBindingLayout,
@@ -326,6 +317,10 @@ export const heapRecordLayouts = {
   materials: [materialCoreLayout, textureInfoLayout, textureBindingLayout],
 } as const;
 
+function vertexBytesAllStreams(): number {
+  return 4 * (VERTEX_POSITION_WORDS + VERTEX_NORMAL_WORDS + VERTEX_TANGENT_WORDS + VERTEX_COLOR_WORDS + 2 * VERTEX_UV_WORDS);
+}
+
 /** GPU record sizes in bytes (the mirrored package's "GPU record-size constants"). */
 export const rendererWavefrontRecordSizes = {
   pathState: pathStateLayout.size,
@@ -335,7 +330,7 @@ export const rendererWavefrontRecordSizes = {
   surfaceRecord: surfaceRecordLayout.size,
   sampleRecord: sampleRecordLayout.size,
   primitive: primitiveLayout.size,
-  vertex: vertexLayout.size,
+  vertex: vertexBytesAllStreams(),
   instance: instanceLayout.size,
   bvhNode: bvhNodeLayout.size,
   materialCore: materialCoreLayout.size,
@@ -346,7 +341,8 @@ export const rendererWavefrontRecordSizes = {
 export const rendererWavefrontPathStateBytes = pathStateLayout.size;
 export const rendererWavefrontShadowRayBytes = shadowRayLayout.size;
 export const rendererWavefrontPrimitiveBytes = primitiveLayout.size;
-export const rendererWavefrontVertexBytes = vertexLayout.size;
+/** Bytes per vertex in the vertex streams when a mesh has every attribute. */
+export const rendererWavefrontVertexBytes = vertexBytesAllStreams();
 export const rendererWavefrontInstanceBytes = instanceLayout.size;
 export const rendererWavefrontBvhNodeBytes = bvhNodeLayout.size;
 export const rendererWavefrontMaterialBytes = materialCoreLayout.size;

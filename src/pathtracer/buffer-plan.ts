@@ -14,7 +14,6 @@ import {
   shadingWorkItemLayout,
   shadowRayLayout,
   surfaceRecordLayout,
-  vertexLayout,
 } from '../gpu-layout/records.ts';
 import type { PathTracerBindingName } from '../gpu-layout/bindings.ts';
 
@@ -42,8 +41,9 @@ export interface BufferPlanInput {
   tileSize: number;
   maxDepth: number;
   aovs: boolean;
-  vertexCount: number;
-  indexCount: number;
+  /** Bytes of the vertex streams and of the index buffer (pack-vertices.ts vertexStreamBytes). */
+  vertexStreams: number;
+  indices: number;
   /** Triangles over all instances plus analytic shapes. */
   primitiveCount: number;
   alphaPrimitiveCount: number;
@@ -72,8 +72,8 @@ export function planBuffers(i: BufferPlanInput): Record<PlannedBufferName, Plann
     bvhParents: scene((2 * n - 1) * 4, 'the BVH parent links'),
     alphaPrimitives: scene(Math.max(1, i.alphaPrimitiveCount) * alphaPrimitiveLayout.size, 'the alpha-test records'),
     instances: scene(Math.max(1, i.instanceCount) * instanceLayout.size, 'the instance buffer', 'instances'),
-    indices: scene(Math.max(1, i.indexCount) * 4, 'the index buffer'),
-    vertices: scene(Math.max(1, i.vertexCount) * vertexLayout.size, 'the vertex buffer'),
+    indices: scene(i.indices, 'the index buffer'),
+    vertexStreams: scene(i.vertexStreams, 'the vertex streams'),
     materials: scene(Math.max(1, i.materialCells) * 16, 'the material heap', 'materials'),
     lights: scene(Math.max(1, i.lightCount) * lightRecordLayout.size, 'the light records'),
     frame: frame(frameUniformsLayout.size, 'the frame constants'),

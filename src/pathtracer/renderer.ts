@@ -20,6 +20,7 @@ import { GpuBufferSet, readGpuBuffer } from './gpu-buffers.ts';
 import { pathTracerPipelines, type PathTracerPipelines } from './pipelines.ts';
 import { FilmDisplay } from './presentation.ts';
 import { prepareScene, type PreparedScene } from './scene/prepare-scene.ts';
+import { vertexStreamBytes } from './scene/pack-vertices.ts';
 import { planWaves, tileCount } from './tiling.ts';
 import type {
   WavefrontFrameStats,
@@ -49,8 +50,7 @@ function planInput(config: WavefrontPathTracingComputeConfig, scene: NormalizedS
     tileSize: config.tileSize,
     maxDepth: config.maxDepth,
     aovs: config.aovs,
-    vertexCount: scene.meshes.reduce((n, m) => n + m.vertexCount, 0),
-    indexCount: scene.meshes.reduce((n, m) => n + m.indices.length, 0),
+    ...vertexStreamBytes(scene.meshes),
     primitiveCount: scene.triangleCount + scene.sceneObjects.length,
     alphaPrimitiveCount: alpha,
     instanceCount: scene.instances.length + scene.sceneObjects.length,
@@ -165,7 +165,7 @@ class WavefrontRenderer implements WavefrontPathTracingRenderer {
       alphaPrimitives: prepared.alphaPrimitives,
       instances: prepared.instances,
       indices: prepared.indices.buffer as ArrayBuffer,
-      vertices: prepared.vertices,
+      vertexStreams: prepared.vertexStreams.buffer as ArrayBuffer,
       materials: prepared.materials,
       lights: prepared.lights,
     };

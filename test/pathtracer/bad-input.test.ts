@@ -2,7 +2,7 @@
 // any GPU work, and the shared device stays healthy (nothing half-renders).
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { createWavefrontPathTracingComputeRenderer, GpuRendererError } from '../../src/index.ts';
+import { createWavefrontPathTracingComputeRenderer, GpuRendererError, rendererWavefrontPrimitiveBytes } from '../../src/index.ts';
 import { testDevice } from '../helpers/gpu.ts';
 
 const tri = [0, 0, 0, 1, 0, 0, 0, 1, 0];
@@ -61,9 +61,9 @@ test('maxDepth, size, samplesPerPixel and camera out of range', async () => {
 test('scenes beyond the device limits are rejected before allocation, naming the field', async () => {
   const device = await testDevice();
   const limit = Math.min(device.limits.maxStorageBufferBindingSize, device.limits.maxBufferSize);
-  // Enough triangles that the 80-byte attribute records overflow one storage binding.
-  const triangles = Math.floor(limit / 80) + 1;
-  if (triangles > 4_000_000) return; // a device this large is not tested here
+  // Enough triangles that the primitive records (one per triangle) overflow one storage binding.
+  const triangles = Math.floor(limit / rendererWavefrontPrimitiveBytes) + 1;
+  if (triangles > 6_000_000) return; // a device this large is not tested here
   const positions = new Float32Array(triangles * 9);
   for (let t = 0; t < triangles; t++) positions.set([t, 0, 0, t + 1, 0, 0, t, 1, 0], 9 * t);
   await expectError({ meshes: [{ positions }] }, 'SCENE_TOO_LARGE', 'meshes');

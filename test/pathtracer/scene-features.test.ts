@@ -1,7 +1,7 @@
 // The shared scene representation end to end: textures sampled on the GPU at the hit's uv (uv sets,
 // KHR_texture_transform, wrap modes, sRGB decoding, vertex colours), alpha MASK and BLEND, instances
 // equal to their flattened geometry (mirroring transforms included), shader specialisation that does
-// not change the image, and first-hit AOVs.
+// not change the image, first-hit AOVs, and the vertex streams (normals, tangents, normal maps).
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { createWavefrontPathTracingComputeRenderer } from '../../src/pathtracer/index.ts';
@@ -225,4 +225,62 @@ test('first-hit AOVs: albedo, shading normal and depth of the first non-specular
   const plain = await createWavefrontPathTracingComputeRenderer({ device, width: 8, height: 8, meshes: [square(lambert)] });
   await assert.rejects(plain.readAov('albedo'), (e: unknown) => (e as { code?: string }).code === 'INVALID_STATE');
   plain.destroy();
+});
+
+/** Mean normal AOV of the image (every pixel sees the square). */
+async function meanNormal(meshes: WavefrontMeshInput[], textures: WavefrontTextureInput[] = []): Promise<Float32Array> {
+  const device = await testDevice();
+  const renderer = await createWavefrontPathTracingComputeRenderer({ device, width: SIZE, height: SIZE, samplesPerPixel: 2, camera, environment: { color: [1, 1, 1] }, aovs: true, meshes, textures });
+  try {
+    await renderer.renderFrame();
+    return (await renderer.readAov('normal')).data;
+  } finally {
+    renderer.destroy();
+  }
+}
+
+test('vertex streams: interpolated normals, degenerate normals, and normal maps with authored or derived tangents', async () => {
+  // Normals tilted towards +x on the right edge: the AOV at each pixel is the interpolated normal,
+  // renormalised (the image is flat in y, so rows agree; compare at pixel centres within the
+  // variation across one pixel).
+  const tilt = 0.5;
+  const n = [0, 0, 1, tilt, 0, 1, tilt, 0, 1, 0, 0, 1];
+  const tilted = await meanNormal([square(lambert, { normals: n })]);
+  for (let x = 0; x < SIZE; x++) {
+    const s = (x + 0.5) / SIZE;
+    const want = [tilt * s, 0, 1];
+    const len = Math.hypot(...want);
+    for (let c = 0; c < 3; c++) {
+      const got = tilted[4 * (5 * SIZE + x) + c]!;
+      assert.ok(Math.abs(got - want[c]! / len) < 0.02, `pixel ${x} channel ${c}: ${got} vs ${want[c]! / len}`);
+    }
+  }
+  // A zero normal at vertex 2, which both triangles share: they shade with the geometric normal
+  // (vertex 1's tilt does not show either).
+  const degenerate = await meanNormal([square(lambert, { normals: [0, 0, 1, tilt, 0, 1, 0, 0, 0, 0, 0, 1] })]);
+  for (let i = 0; i < SIZE * SIZE; i++) [0, 0, 1].forEach((w, c) => assert.ok(Math.abs(degenerate[4 * i + c]! - w) < 1e-4, `degenerate: ${degenerate[4 * i + c]}`));
+
+  // A constant linear normal map m = (0, 0.6, 0.8): n = normalize(T m.x + B m.y + N m.z) with
+  // B = cross(N, T) * tangent.w (glTF 2.0 section 3.7.2.1).
+  const texel = [128, 204, 230, 255];
+  const m = texel.slice(0, 3).map((t) => (t / 255) * 2 - 1);
+  const mapped = (sign: number): number[] => {
+    const v = [m[0]!, sign * m[1]!, m[2]!];
+    const len = Math.hypot(...v);
+    return v.map((c) => c / len);
+  };
+  const normalMap: WavefrontTextureInput = { image: { width: 1, height: 1, data: Uint8Array.from(texel) } };
+  const material = { ...lambert, normalTexture: { index: 0 } };
+  const tangents = (w: number): number[] => Array.from({ length: 4 }, () => [1, 0, 0, w]).flat();
+  const plus = await meanNormal([square(material, { tangents: tangents(1) })], [normalMap]);
+  const minus = await meanNormal([square(material, { tangents: tangents(-1) })], [normalMap]);
+  // No tangents: T = dp/du = +x and the sign from dp/dv = -y (v grows downwards), as tangent w = -1.
+  const derived = await meanNormal([square(material)], [normalMap]);
+  for (let i = 0; i < SIZE * SIZE; i++) {
+    for (let c = 0; c < 3; c++) {
+      assert.ok(Math.abs(plus[4 * i + c]! - mapped(1)[c]!) < 1e-3, `w = +1 channel ${c}: ${plus[4 * i + c]} vs ${mapped(1)[c]}`);
+      assert.ok(Math.abs(minus[4 * i + c]! - mapped(-1)[c]!) < 1e-3, `w = -1 channel ${c}: ${minus[4 * i + c]} vs ${mapped(-1)[c]}`);
+      assert.ok(Math.abs(derived[4 * i + c]! - mapped(-1)[c]!) < 1e-3, `derived channel ${c}: ${derived[4 * i + c]} vs ${mapped(-1)[c]}`);
+    }
+  }
 });

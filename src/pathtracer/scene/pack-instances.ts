@@ -32,7 +32,7 @@ export function packInstances(scene: NormalizedScene, streams: PackedVertexStrea
     writeStruct(instanceLayout, view, i, {
       objectToWorld0: o0, objectToWorld1: o1, objectToWorld2: o2,
       normalToWorld0: n0, normalToWorld1: n1, normalToWorld2: n2,
-      baseVertex: streams.baseVertex[inst.mesh]!,
+      ...streams.streams[inst.mesh]!,
       firstIndex: streams.firstIndex[inst.mesh]!,
       material: materialOffsets[instanceMaterial(scene, inst)]!,
       flags,
@@ -51,6 +51,7 @@ export function packInstances(scene: NormalizedScene, streams: PackedVertexStrea
       normalToWorld0: [1 / scale[0]!, 0, 0, 0],
       normalToWorld1: [0, 1 / scale[1]!, 0, 0],
       normalToWorld2: [0, 0, 1 / scale[2]!, 0],
+      positions: INDEX_NONE, normals: INDEX_NONE, tangents: INDEX_NONE, colors: INDEX_NONE, uv0: INDEX_NONE, uv1: INDEX_NONE,
       material: objectMaterialOffsets[k]!,
       flags: sphere ? PRIMITIVE_SHAPE_SPHERE : PRIMITIVE_SHAPE_BOX,
       lightBase: INDEX_NONE,

@@ -18,7 +18,7 @@ export interface PreparedScene {
   alphaPrimitives: ArrayBuffer;
   instances: ArrayBuffer;
   indices: Uint32Array;
-  vertices: ArrayBuffer;
+  vertexStreams: Uint32Array;
   materials: ArrayBuffer;
   atlas: TextureAtlas;
   lights: ArrayBuffer;
@@ -59,7 +59,7 @@ export async function prepareScene(scene: NormalizedScene, limits: AtlasLimits, 
     alphaPrimitives: flat.alphaPrimitives,
     instances: packInstances(scene, streams, materialOffsets, objectMaterialOffsets, lights.lightBase),
     indices: streams.indices,
-    vertices: streams.vertices,
+    vertexStreams: streams.vertexStreams,
     materials: heap.finish(),
     atlas,
     lights: lights.records,
