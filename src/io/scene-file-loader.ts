@@ -4,12 +4,11 @@
  * merged (see gltf/scene-file-references.ts). Errors are INVALID_SCENE_FILE naming the field, except
  * the glTF loader's own, which keep their code and JSON pointer.
  */
-import { readFile } from 'node:fs/promises';
 import { GpuRendererError, isGpuRendererError } from '../errors/gpu-renderer-error.ts';
 import { parseSceneFile, type WavefrontSceneFile } from '../scene/scene-file.ts';
 import type { WavefrontImageInput, WavefrontSceneDescription } from '../scene/types.ts';
 import { decodeImage } from './gltf/image-decoding.ts';
-import { readResource, sourceStringToUrl } from './gltf/resources.ts';
+import { readResource, readUrl, sourceStringToUrl } from './gltf/resources.ts';
 import { resolveGltfReferences } from './gltf/scene-file-references.ts';
 
 export interface ResolvedSceneFile {
@@ -55,7 +54,7 @@ export async function loadSceneFile(source: string | URL, options: { signal?: Ab
   const url = source instanceof URL ? source : await sourceStringToUrl(source);
   let text: string;
   try {
-    text = url.protocol === 'file:' ? await readFile(url, 'utf8') : await (await fetch(url, options.signal ? { signal: options.signal } : {})).text();
+    text = new TextDecoder().decode(await readUrl(url, options.signal));
   } catch (error) {
     throw new GpuRendererError('INVALID_SCENE_FILE', `cannot read ${url.href}: ${(error as Error).message}`, { field: 'scene', cause: error });
   }
