@@ -1,6 +1,6 @@
 import { after, test } from 'node:test';
 import assert from 'node:assert/strict';
-import { setImmediate as immediate } from 'node:timers';
+import { watchEventLoop } from '../helpers/event-loop.ts';
 import { buildBvh, buildBvhAsync, terminateBvhWorkers } from '../../src/accel/bvh-builder.ts';
 import { duplicatedSoup, gridMesh, randomSoup } from './bvh-fixtures.ts';
 
@@ -24,30 +24,12 @@ test('buildBvhAsync produces the same tree as buildBvh', async () => {
 
 test('buildBvhAsync on this thread (workers: 0) yields to the event loop during a large build; buildBvh does not', async () => {
   const positions = randomSoup(300000, 53, 100, 1);
-  // A ticker that needs one event-loop turn per tick; the longest gap between ticks is the longest
-  // stretch the build kept the loop blocked.
-  const watch = (): { stop: () => { turns: number; longestGapMs: number } } => {
-    let turns = 0;
-    let running = true;
-    let last = performance.now();
-    let longestGapMs = 0;
-    const tick = (): void => {
-      const now = performance.now();
-      longestGapMs = Math.max(longestGapMs, now - last);
-      last = now;
-      turns++;
-      if (running) immediate(tick);
-    };
-    immediate(tick);
-    return { stop: () => ((running = false), { turns, longestGapMs }) };
-  };
-
-  const syncWatch = watch();
+  const syncWatch = watchEventLoop();
   const sync = buildBvh(positions);
   const syncSeen = syncWatch.stop();
   assert.equal(syncSeen.turns, 0, 'the synchronous build holds the event loop throughout');
 
-  const asyncWatch = watch();
+  const asyncWatch = watchEventLoop();
   const result = await buildBvhAsync(positions, { sliceMs: 8, workers: 0 });
   const seen = asyncWatch.stop();
   assert.deepEqual(new Uint8Array(result.nodes), new Uint8Array(sync.nodes));

@@ -2,7 +2,7 @@ import { after, test } from 'node:test';
 import assert from 'node:assert/strict';
 import { spawnSync } from 'node:child_process';
 import { fileURLToPath } from 'node:url';
-import { setImmediate as immediate } from 'node:timers';
+import { watchEventLoop } from '../helpers/event-loop.ts';
 import { buildBvh, buildBvhAsync, buildBvhParallel, terminateBvhWorkers, warmBvhWorkers } from '../../src/accel/bvh-builder.ts';
 import { buildOnWorkers } from '../../src/accel/bvh-parallel.ts';
 import { resolveBuildParams } from '../../src/accel/bvh-serial.ts';
@@ -84,20 +84,9 @@ test('options and input are validated before any worker starts', async () => {
 test('progress rises to 1 and a parallel build keeps the event loop turning', async () => {
   const positions = randomSoup(200_000, 67, 100, 1);
   const progress: number[] = [];
-  let turns = 0;
-  let running = true;
-  let last = performance.now();
-  let longestGapMs = 0;
-  const tick = (): void => {
-    const now = performance.now();
-    longestGapMs = Math.max(longestGapMs, now - last);
-    last = now;
-    turns++;
-    if (running) immediate(tick);
-  };
-  immediate(tick);
+  const watch = watchEventLoop();
   const result = await buildBvhParallel(positions, { workers: 2, onProgress: (f) => progress.push(f) });
-  running = false;
+  const { turns, longestGapMs } = watch.stop();
   assert.ok(sameTree(result, buildBvh(positions)));
   assert.equal(progress.at(-1), 1);
   for (let i = 1; i < progress.length; i++) assert.ok(progress[i]! >= progress[i - 1]!, 'progress never goes back');
