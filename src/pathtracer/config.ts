@@ -22,6 +22,8 @@ export interface WavefrontPathTracingComputeConfig {
   exposure: number;
   /** Accumulate albedo, normal and depth AOVs of the first non-specular hit. */
   aovs: boolean;
+  /** Multiple-scattering energy compensation of rough microfacet lobes (materials). */
+  energyCompensation: boolean;
 }
 
 const toneMappings: readonly WavefrontToneMapping[] = ['neutral', 'aces', 'linear', 'agx'];
@@ -30,6 +32,7 @@ const toneMappings: readonly WavefrontToneMapping[] = ['neutral', 'aces', 'linea
 export const wavefrontOptionNames: ReadonlySet<string> = new Set<keyof WavefrontPathTracingOptions>([
   'width', 'height', 'maxDepth', 'samplesPerPixel', 'tileSize', 'seed', 'camera', 'meshes', 'instances', 'materials', 'textures',
   'images', 'sceneObjects', 'lights', 'environment', 'toneMapping', 'exposure', 'aovs', 'shaderSpecialization', 'canvas', 'device', 'powerPreference',
+  'energyCompensation',
 ]);
 
 /** Validates the non-geometry options; every error names its field. */
@@ -60,5 +63,9 @@ export function createWavefrontPathTracingComputeConfig(options: Partial<Wavefro
   if (!toneMappings.includes(toneMapping)) fail('INVALID_OPTION', 'toneMapping', `expected one of ${toneMappings.join(', ')}`);
   const exposure = options.exposure === undefined ? 1 : requireNumberInRange(options.exposure, 'exposure', { min: 0 });
   if (options.aovs !== undefined && typeof options.aovs !== 'boolean') fail('INVALID_OPTION', 'aovs', 'expected a boolean');
-  return { width, height, maxDepth, samplesPerPixel, tileSize, seed, camera, environment, toneMapping, exposure, aovs: options.aovs ?? false };
+  if (options.energyCompensation !== undefined && typeof options.energyCompensation !== 'boolean') fail('INVALID_OPTION', 'energyCompensation', 'expected a boolean');
+  return {
+    width, height, maxDepth, samplesPerPixel, tileSize, seed, camera, environment, toneMapping, exposure, aovs: options.aovs ?? false,
+    energyCompensation: options.energyCompensation ?? false,
+  };
 }

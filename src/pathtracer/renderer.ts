@@ -21,6 +21,8 @@ import { pathTracerPipelines, type PathTracerPipelines } from './pipelines.ts';
 import { FilmDisplay } from './presentation.ts';
 import { prepareScene, type PreparedScene } from './scene/prepare-scene.ts';
 import { vertexStreamBytes } from './scene/pack-vertices.ts';
+import { materialFeatures } from './scene/material-features.ts';
+import { materialHeapCells } from './scene/pack-materials.ts';
 import { planWaves, tileCount } from './tiling.ts';
 import type {
   WavefrontFrameStats,
@@ -55,8 +57,8 @@ function planInput(config: WavefrontPathTracingComputeConfig, scene: NormalizedS
     alphaPrimitiveCount: alpha,
     instanceCount: scene.instances.length + scene.sceneObjects.length,
     lightCount: lights,
-    // Upper bound: a core (7 cells) and four texture bindings (3 cells each) per material.
-    materialCells: (scene.materials.length + scene.sceneObjects.length) * 19,
+    // Cores, extension blocks and texture bindings (the exact heap, tables included, is checked after packing).
+    materialCells: materialHeapCells([...scene.materials, ...scene.sceneObjects.map((o) => o.material)]),
   };
 }
 
@@ -83,6 +85,7 @@ function sceneFeatures(prepared: PreparedScene, config: WavefrontPathTracingComp
     FEATURE_EMISSIVE_LIGHTS: prepared.uses.emissiveLights,
     FEATURE_ENVIRONMENT: config.environment.some((c) => c > 0),
     FEATURE_AOVS: config.aovs,
+    ...materialFeatures(prepared.uses.materials),
   };
 }
 
@@ -106,7 +109,7 @@ export async function createWavefrontPathTracingComputeRenderer(options: Wavefro
     const limits = acquired.device.limits;
     const estimate = planInput(config, scene);
     checkBufferLimits(limits, planBuffers(estimate));
-    const prepared = await prepareScene(scene, { maxTextureDimension2D: limits.maxTextureDimension2D, maxTextureArrayLayers: limits.maxTextureArrayLayers });
+    const prepared = await prepareScene(scene, { maxTextureDimension2D: limits.maxTextureDimension2D, maxTextureArrayLayers: limits.maxTextureArrayLayers }, { energyCompensation: config.energyCompensation });
     const plan = planBuffers({ ...estimate, materialCells: prepared.materials.byteLength / 16, lightCount: prepared.lightCount, primitiveCount: prepared.primitiveCount });
     checkBufferLimits(limits, plan);
     const features = specialization === 'off' ? allShaderFeatures : sceneFeatures(prepared, config);

@@ -11,6 +11,17 @@ export const shaderFeatures = {
   FEATURE_EMISSIVE_LIGHTS: { default: true, doc: 'emissive triangles are sampled by next-event estimation' },
   FEATURE_ENVIRONMENT: { default: true, doc: 'a non-black environment lights the scene' },
   FEATURE_AOVS: { default: true, doc: 'the first non-specular hit writes albedo, normal and depth' },
+  // KHR material extensions (materials subsystem): each compiles in when a material uses it.
+  FEATURE_SPECULAR: { default: true, doc: 'KHR_materials_specular: specular weight and F0 colour' },
+  FEATURE_TRANSMISSION: { default: true, doc: 'KHR_materials_transmission: thin-walled and refractive GGX transmission' },
+  FEATURE_VOLUME: { default: true, doc: 'KHR_materials_volume: refractive solids, nested media, Beer-Lambert absorption' },
+  FEATURE_CLEARCOAT: { default: true, doc: 'KHR_materials_clearcoat' },
+  FEATURE_SHEEN: { default: true, doc: 'KHR_materials_sheen (Charlie)' },
+  FEATURE_IRIDESCENCE: { default: true, doc: 'KHR_materials_iridescence (thin-film Fresnel)' },
+  FEATURE_ANISOTROPY: { default: true, doc: 'KHR_materials_anisotropy (anisotropic GGX)' },
+  FEATURE_DIFFUSE_TRANSMISSION: { default: true, doc: 'KHR_materials_diffuse_transmission' },
+  FEATURE_DISPERSION: { default: true, doc: 'KHR_materials_dispersion: paths that meet it carry one wavelength' },
+  FEATURE_ENERGY_COMPENSATION: { default: true, doc: 'multiple-scattering energy compensation of rough microfacet lobes' },
 } as const;
 
 export type ShaderFeatureName = keyof typeof shaderFeatures;
