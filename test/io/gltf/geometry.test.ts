@@ -5,7 +5,7 @@ import { EXTMeshoptCompression, KHRDracoMeshCompression, KHRMeshQuantization } f
 import { MeshoptEncoder } from 'meshoptimizer';
 import { loadGltfScene } from '../../../src/io/index.ts';
 import { toTriangleList } from '../../../src/io/gltf/topology.ts';
-import { accessor, assertClose, toGlb } from './helpers.ts';
+import { accessor, assertClose, rejectsWith, toGlb } from './helpers.ts';
 
 /** z component of the counter-clockwise normal of each triangle. */
 function triangleNormalZ(positions: ArrayLike<number>, indices: ArrayLike<number>): number[] {
@@ -185,4 +185,60 @@ test('EXT_meshopt_compression: a meshopt-encoded mesh decodes to the same data',
   assert.deepEqual(canonical(m.indices!), canonical(indices));
   // Normals go through an 8-bit octahedral filter.
   for (let i = 0; i < m.normals!.length; i += 3) assertClose(Array.from(m.normals!).slice(i, i + 3), [0, 0, 1], 0.02, `normal ${i / 3}`);
+});
+
+/** The GLB's BIN chunk payload, overwritten from `from` on with a pseudo-random byte pattern. */
+function scrambleBin(glb: Uint8Array, from = 0): Uint8Array {
+  const out = glb.slice();
+  const view = new DataView(out.buffer);
+  const binStart = 20 + view.getUint32(12, true) + 8;
+  for (let i = binStart + from; i < out.length; i++) out[i] = (i * 7919 + 13) & 255;
+  return out;
+}
+
+/** The GLB with its JSON chunk replaced by `edit(json)` (same length budget: re-laid out). */
+// eslint-disable-next-line @typescript-eslint/no-explicit-any -- free-form JSON surgery
+function editGlbJson(glb: Uint8Array, edit: (json: any) => void): Uint8Array {
+  const view = new DataView(glb.buffer, glb.byteOffset, glb.byteLength);
+  const jsonLength = view.getUint32(12, true);
+  const json = JSON.parse(new TextDecoder().decode(glb.subarray(20, 20 + jsonLength)));
+  edit(json);
+  const text = new TextEncoder().encode(JSON.stringify(json));
+  const padded = new Uint8Array(Math.ceil(text.length / 4) * 4).fill(0x20);
+  padded.set(text);
+  const rest = glb.subarray(20 + jsonLength);
+  const out = new Uint8Array(20 + padded.length + rest.length);
+  out.set(glb.subarray(0, 12));
+  const o = new DataView(out.buffer);
+  o.setUint32(8, out.length, true);
+  o.setUint32(12, padded.length, true);
+  o.setUint32(16, 0x4e4f534a, true);
+  out.set(padded, 20);
+  out.set(rest, 20 + padded.length);
+  return out;
+}
+
+test('corrupt compressed geometry names the Draco primitive or meshopt buffer view', async () => {
+  const specifier = 'draco3dgltf';
+  const draco3d = ((await import(specifier)) as { default: { createEncoderModule(): Promise<unknown> } }).default;
+  const dracoDoc = new Document();
+  dracoDoc.createScene().addChild(dracoDoc.createNode('d').setMesh(dracoDoc.createMesh().addPrimitive(gridPrimitive(dracoDoc).primitive)));
+  dracoDoc.createExtension(KHRDracoMeshCompression).setRequired(true);
+  const dracoGlb = await toGlb(dracoDoc, { 'draco3d.encoder': await draco3d.createEncoderModule() });
+  const at = '/meshes/0/primitives/0/extensions/KHR_draco_mesh_compression';
+  await rejectsWith(loadGltfScene(scrambleBin(dracoGlb)), 'INVALID_GLTF', at, /Draco data/);
+  const wrongId = editGlbJson(dracoGlb, (json) => (json.meshes[0].primitives[0].extensions.KHR_draco_mesh_compression.attributes.NORMAL = 17));
+  // The reader decodes an unknown attribute id to nothing; the element count check names it.
+  await rejectsWith(loadGltfScene(wrongId), 'INVALID_GLTF', '/meshes/0/primitives/0/attributes/NORMAL', /0 elements, the primitive's POSITION has 81/);
+
+  await MeshoptEncoder.ready;
+  const meshoptDoc = new Document();
+  meshoptDoc.createScene().addChild(meshoptDoc.createNode('m').setMesh(meshoptDoc.createMesh().addPrimitive(gridPrimitive(meshoptDoc).primitive)));
+  meshoptDoc.createExtension(EXTMeshoptCompression).setRequired(true);
+  const meshoptGlb = await toGlb(meshoptDoc, { 'meshopt.encoder': MeshoptEncoder });
+  await rejectsWith(loadGltfScene(scrambleBin(meshoptGlb)), 'INVALID_GLTF', '/bufferViews/0/extensions/EXT_meshopt_compression', /does not decode/);
+  const badMode = editGlbJson(meshoptGlb, (json) => (json.bufferViews[0].extensions.EXT_meshopt_compression.mode = 'POINTS'));
+  await rejectsWith(loadGltfScene(badMode), 'INVALID_GLTF', '/bufferViews/0/extensions/EXT_meshopt_compression/mode', /"POINTS"/);
+  const badFilter = editGlbJson(meshoptGlb, (json) => (json.bufferViews[0].extensions.EXT_meshopt_compression.filter = 'ZIGZAG'));
+  await rejectsWith(loadGltfScene(badFilter), 'INVALID_GLTF', '/bufferViews/0/extensions/EXT_meshopt_compression/filter', /"ZIGZAG"/);
 });
