@@ -18,6 +18,8 @@ export interface PrimitiveGeometryOptions {
   weights: readonly number[];
   /** KHR_mesh_primitive_restart is in use: the largest index value restarts strips and fans. */
   primitiveRestart: boolean;
+  /** Notes about data left out (the caller prefixes the primitive's pointer). */
+  warn?: (message: string) => void;
 }
 
 /** Components per element of the attributes the renderer reads (glTF 2.0 section 3.7.2.1). */
@@ -95,6 +97,8 @@ export function primitiveGeometry(primitive: Primitive, options: PrimitiveGeomet
   }
 
   const indexAccessor = primitive.getIndices();
+  const count = indexAccessor === null ? vertexCount : indexAccessor.getCount();
+  if (mode === MODE_TRIANGLES && count % 3 !== 0) options.warn?.(`${count} ${indexAccessor === null ? 'vertices' : 'indices'} are not whole triangles; the last ${count % 3} ignored`);
   let indices: Uint32Array;
   if (indexAccessor === null) {
     indices = toTriangleList(mode, sequentialIndices(vertexCount));

@@ -1,7 +1,7 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { Document, Primitive } from '@gltf-transform/core';
-import { EXTMeshoptCompression, KHRDracoMeshCompression, KHRMeshQuantization } from '@gltf-transform/extensions';
+import { EXTMeshoptCompression, KHRAccessorFloat16, KHRAccessorFloat64, KHRDracoMeshCompression, KHRMeshPrimitiveRestart, KHRMeshQuantization } from '@gltf-transform/extensions';
 import { MeshoptEncoder } from 'meshoptimizer';
 import { loadGltfScene } from '../../../src/io/index.ts';
 import { toTriangleList } from '../../../src/io/gltf/topology.ts';
@@ -55,9 +55,22 @@ test('strip, fan, non-indexed and point primitives in a file', async () => {
   assert.equal(f.indices!.length, 18);
   assert.ok(triangleNormalZ(f.positions, f.indices!).every((z) => z > 0), 'fan winding');
   assert.deepEqual(Array.from(l.indices!), [0, 1, 2], 'non-indexed list: sequential indices');
+  assert.ok(!scene.warnings.some((w) => w.startsWith('/meshes/0/primitives/4')), 'whole triangles: no warning');
   assert.equal(l.normals, undefined, 'no NORMAL: normals omitted (flat shading)');
   assert.ok(scene.warnings.some((w) => w.startsWith('/meshes/0/primitives/2: skipped') && /POINTS/.test(w)), scene.warnings.join('\n'));
   assert.ok(scene.warnings.some((w) => w.startsWith('/meshes/0/primitives/3: skipped') && /LINES/.test(w)));
+});
+
+test('a TRIANGLES primitive whose index count is not a multiple of 3 keeps its whole triangles, with a warning', async () => {
+  const doc = new Document();
+  const buffer = doc.createBuffer();
+  const primitive = doc.createPrimitive()
+    .setAttribute('POSITION', accessor(doc, buffer, 'VEC3', new Float32Array([0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0])))
+    .setIndices(accessor(doc, buffer, 'SCALAR', new Uint16Array([0, 1, 2, 0, 2, 3, 0, 1])));
+  doc.createScene().addChild(doc.createNode('n').setMesh(doc.createMesh().addPrimitive(primitive)));
+  const scene = await loadGltfScene(await toGlb(doc));
+  assert.deepEqual(Array.from(scene.meshes[0]!.indices!), [0, 1, 2, 0, 2, 3]);
+  assert.ok(scene.warnings.includes('/meshes/0/primitives/0: 8 indices are not whole triangles; the last 2 ignored'), scene.warnings.join('\n'));
 });
 
 test('KHR_mesh_quantization: integer positions, normalised normals, uvs and colours are dequantised', async () => {
@@ -241,4 +254,28 @@ test('corrupt compressed geometry names the Draco primitive or meshopt buffer vi
   await rejectsWith(loadGltfScene(badMode), 'INVALID_GLTF', '/bufferViews/0/extensions/EXT_meshopt_compression/mode', /"POINTS"/);
   const badFilter = editGlbJson(meshoptGlb, (json) => (json.bufferViews[0].extensions.EXT_meshopt_compression.filter = 'ZIGZAG'));
   await rejectsWith(loadGltfScene(badFilter), 'INVALID_GLTF', '/bufferViews/0/extensions/EXT_meshopt_compression/filter', /"ZIGZAG"/);
+});
+
+test('KHR_accessor_float64 and _float16 positions, and KHR_mesh_primitive_restart strips, read as float32 triangle lists', async () => {
+  const doc = new Document();
+  doc.createExtension(KHRAccessorFloat64).setRequired(true);
+  doc.createExtension(KHRAccessorFloat16).setRequired(true);
+  doc.createExtension(KHRMeshPrimitiveRestart);
+  const buffer = doc.createBuffer();
+  // Two strips of two triangles each in one index buffer, split by the restart value 0xffff.
+  const strips = [0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0, 3, 0, 0, 4, 0, 0, 3, 1, 0, 4, 1, 0];
+  const wide = doc.createPrimitive()
+    .setMode(Primitive.Mode.TRIANGLE_STRIP)
+    .setAttribute('POSITION', doc.createAccessor().setType('VEC3').setArray(new Float64Array(strips)).setBuffer(buffer))
+    .setIndices(accessor(doc, buffer, 'SCALAR', new Uint16Array([0, 1, 2, 3, 0xffff, 4, 5, 6, 7])));
+  const half = doc.createPrimitive()
+    .setAttribute('POSITION', doc.createAccessor().setType('VEC3').setArray(new Float16Array([0, 0, 0, 0.5, 0, 0, 0, 0.25, 0]) as never).setBuffer(buffer));
+  doc.createScene().addChild(doc.createNode('n').setMesh(doc.createMesh().addPrimitive(wide).addPrimitive(half)));
+  const scene = await loadGltfScene(await toGlb(doc));
+  assert.deepEqual(scene.extensionsUsed.toSorted(), ['KHR_accessor_float16', 'KHR_accessor_float64', 'KHR_mesh_primitive_restart']);
+  const [a, b] = scene.meshes;
+  assert.ok(a!.positions instanceof Float32Array && b!.positions instanceof Float32Array);
+  assertClose(a!.positions, strips, 0, 'float64 positions');
+  assert.deepEqual(Array.from(a!.indices!), [0, 1, 2, 1, 3, 2, 4, 5, 6, 5, 7, 6], 'each strip starts afresh after the restart value');
+  assertClose(b!.positions, [0, 0, 0, 0.5, 0, 0, 0, 0.25, 0], 0, 'float16 positions');
 });
