@@ -5,6 +5,8 @@
  *   --rounds <n>     | BENCH_ROUNDS         child processes per version, alternated (default 3)
  *   --no-bvh         | BENCH_BVH=0          skip the BVH build benchmark
  *   --bvh-only       | BENCH_ONLY=bvh       run the BVH build benchmark alone
+ *   --no-gltf        | BENCH_GLTF=0         skip the glTF benchmark (load + BVH, textures)
+ *   --gltf-only      | BENCH_ONLY=gltf      run the glTF benchmark alone
  * The command line wins over the environment. BENCH_SPP is read by the path tracer harnesses.
  */
 import { parseArgs } from 'node:util';
@@ -20,7 +22,9 @@ export interface BenchOptions {
   /** Child processes per version; versions alternate (baseline, current, baseline, current, ...). */
   rounds: number;
   bvh: boolean;
-  /** Run the path tracer comparison (off with --bvh-only / BENCH_ONLY=bvh). */
+  /** Run the glTF benchmark (bench/gltf.ts). */
+  gltf: boolean;
+  /** Run the path tracer comparison (off with --bvh-only / --gltf-only). */
   pathTracer: boolean;
 }
 
@@ -59,6 +63,8 @@ export function parseBenchOptions(
       rounds: { type: 'string' },
       'no-bvh': { type: 'boolean' },
       'bvh-only': { type: 'boolean' },
+      'no-gltf': { type: 'boolean' },
+      'gltf-only': { type: 'boolean' },
     },
     strict: true,
     allowPositionals: false,
@@ -75,7 +81,14 @@ export function parseBenchOptions(
   const roundsText = values.rounds ?? env.BENCH_ROUNDS;
   const rounds = roundsText === undefined || roundsText === '' ? DEFAULT_ROUNDS : positiveInteger(roundsText, values.rounds !== undefined ? '--rounds' : 'BENCH_ROUNDS');
   const bvhOnly = values['bvh-only'] === true || env.BENCH_ONLY?.toLowerCase() === 'bvh';
-  const bvh = bvhOnly || (!values['no-bvh'] && !(env.BENCH_BVH !== undefined && OFF.has(env.BENCH_BVH.toLowerCase())));
+  const gltfOnly = values['gltf-only'] === true || env.BENCH_ONLY?.toLowerCase() === 'gltf';
+  if (values['bvh-only'] && values['gltf-only']) throw new Error('--bvh-only and --gltf-only exclude each other');
   if (bvhOnly && values['no-bvh']) throw new Error('--bvh-only and --no-bvh exclude each other');
-  return { baseline, rounds, bvh, pathTracer: !bvhOnly };
+  if (gltfOnly && values['no-gltf']) throw new Error('--gltf-only and --no-gltf exclude each other');
+  // The command line's --x-only wins over BENCH_ONLY.
+  const only = values['bvh-only'] ? 'bvh' : values['gltf-only'] ? 'gltf' : bvhOnly ? 'bvh' : gltfOnly ? 'gltf' : null;
+  const off = (name: string | undefined): boolean => name !== undefined && OFF.has(name.toLowerCase());
+  const bvh = only === 'bvh' || (only === null && !values['no-bvh'] && !off(env.BENCH_BVH));
+  const gltf = only === 'gltf' || (only === null && !values['no-gltf'] && !off(env.BENCH_GLTF));
+  return { baseline, rounds, bvh, gltf, pathTracer: only === null };
 }

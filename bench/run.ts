@@ -1,7 +1,8 @@
 /**
- * `npm run bench [-- options]`: the BVH build benchmark, then the path tracer benchmark of this
- * version beside a baseline git ref (bench/baseline.json), each in its own child processes,
- * alternated round by round. Prints tables and writes every result to bench/results/bench.json.
+ * `npm run bench [-- options]`: the BVH build benchmark, the glTF benchmark (load + BVH of a 1M-
+ * triangle .glb, samples/s with and without textures; a child process), then the path tracer
+ * benchmark of this version beside a baseline git ref (bench/baseline.json), each in its own child
+ * processes, alternated round by round. Prints tables and writes every result to bench/results/bench.json.
  * Figures, not pass/fail: a missing or broken baseline only narrows the run to this version.
  * Options and environment knobs: bench/bench-options.ts and bench/README.md.
  */
@@ -18,6 +19,8 @@ import { runPathTracerComparison } from './pathtracer-compare.ts';
 import type { PathTracerVersion } from './pathtracer-compare.ts';
 import type { SceneComparison, Spread, VersionSceneSummary } from './pathtracer-summary.ts';
 import { runBvhBenchmark } from './bvh.ts';
+import { runNodeChild } from './child-protocol.ts';
+import { printGltfResult, type GltfBenchResult } from './gltf.ts';
 import { isCpuAdapter } from './cpu-clock.ts';
 
 const repoRoot = fileURLToPath(new URL('..', import.meta.url)).replace(/\/$/, '');
@@ -40,7 +43,7 @@ let options: BenchOptions;
 try {
   options = parseBenchOptions(process.argv.slice(2), process.env, await readBaselineFile());
 } catch (error) {
-  console.error(`bench: ${(error as Error).message}\nusage: npm run bench -- [--baseline <ref> | --no-baseline] [--rounds <n>] [--no-bvh]`);
+  console.error(`bench: ${(error as Error).message}\nusage: npm run bench -- [--baseline <ref> | --no-baseline] [--rounds <n>] [--no-bvh | --bvh-only] [--no-gltf | --gltf-only]`);
   process.exit(2);
 }
 
@@ -71,6 +74,21 @@ if (options.bvh) {
   console.log(`load average (1 min) before ${bvh.loadAverage.before.toFixed(2)}, after ${bvh.loadAverage.after.toFixed(2)}; parallel cold start ${bvh.parallelColdStartMs.toFixed(0)} ms`);
 } else {
   console.log('BVH build benchmark skipped (--no-bvh / BENCH_BVH=0)');
+}
+
+if (options.gltf) {
+  console.log('\nglTF: load + BVH of a generated 1M-triangle .glb, samples/s with and without textures (bench/gltf.ts, child process)');
+  const outcome = await runNodeChild([fileURLToPath(new URL('./gltf-child.ts', import.meta.url))], repoRoot, Number(process.env.BENCH_CHILD_TIMEOUT_S ?? 1800) * 1000);
+  if (outcome.ok) {
+    results.gltf = outcome.value;
+    printGltfResult(outcome.value as GltfBenchResult);
+  } else {
+    results.gltf = { error: outcome.error };
+    console.log(`  glTF benchmark FAILED: ${outcome.error}`);
+    process.exitCode = 1;
+  }
+} else {
+  console.log('glTF benchmark skipped (--no-gltf / BENCH_GLTF=0, or another --x-only)');
 }
 
 const fixed = (v: number, digits = 3): string => v.toFixed(digits);

@@ -205,7 +205,7 @@ export async function loadGltfScene(source: GltfSource, options: GltfLoadOptions
     for (let p = 0; p < primitives.length; p++) {
       const at = pointer('meshes', m, 'primitives', p);
       const primitive = primitives[p];
-      const geometry = primitiveGeometry(primitive, { at, weights, primitiveRestart });
+      const geometry = primitiveGeometry(primitive, { at, weights, primitiveRestart, warn: (message) => warnings.push(`${at}: ${message}`) });
       if ('skip' in geometry) {
         warnings.push(`${at}: skipped, ${geometry.skip}`);
         continue;
