@@ -167,6 +167,7 @@ export class PathTracedView implements DemoView {
   private resetProgress(): void {
     const now = performance.now();
     this.progress = { samples: 0, frames: 0, startedAt: now, lastFrameAt: now, rays: 0, renderMs: 0 };
+    this.report(false);
   }
 
   private report(idle: boolean): void {
