@@ -42,7 +42,7 @@ async function cubeOnFloorGlb(): Promise<Uint8Array> {
   const texture = doc.createTexture('checker').setImage(encode({ width: 4, height: 4, data: texels, channels: 4 })).setMimeType('image/png');
   const cubeMaterial = doc.createMaterial('cube').setBaseColorTexture(texture).setMetallicFactor(0).setRoughnessFactor(0.6);
   const floorMaterial = doc.createMaterial('floor').setBaseColorFactor([0.5, 0.5, 0.5, 1]).setMetallicFactor(0).setRoughnessFactor(1);
-  const accessor = (type: 'VEC3' | 'VEC2' | 'SCALAR', array: Float32Array | Uint16Array) => doc.createAccessor().setType(type).setArray(array).setBuffer(buffer);
+  const accessor = (type: 'VEC3' | 'VEC2' | 'SCALAR', array: Float32Array<ArrayBuffer> | Uint16Array<ArrayBuffer>) => doc.createAccessor().setType(type).setArray(array).setBuffer(buffer);
   const cube = doc.createPrimitive()
     .setAttribute('POSITION', accessor('VEC3', new Float32Array(positions)))
     .setAttribute('NORMAL', accessor('VEC3', new Float32Array(normals)))
