@@ -2,7 +2,7 @@
 // features' panel sections, wired together. Everything renderer-specific lives in the view;
 // everything optional lives in a feature (see extensions.ts).
 import type { WavefrontPathTracingOptions } from '@plasius/gpu-renderer';
-import type { CurrentImage, DemoContext, DemoFeature, DemoView, RadianceSource, RenderSettings } from './extensions.ts';
+import type { CurrentImage, DemoContext, DemoFeature, DemoView, RadianceSource, RenderSettings, ViewHost } from './extensions.ts';
 import type { DisplaySettings } from './film-view.ts';
 import { OrbitCamera } from './orbit-camera.ts';
 import { attachOrbitControls } from './orbit-controls.ts';
@@ -24,7 +24,8 @@ export class DemoApp {
   readonly readouts: Readouts;
   private scene: DemoScene | null = null;
   private orbit: OrbitCamera | null = null;
-  private readonly view: DemoView;
+  private view: DemoView;
+  private readonly viewHost: ViewHost;
   private readonly features: readonly DemoFeature[];
   private readonly context: DemoContext;
 
@@ -45,7 +46,7 @@ export class DemoApp {
       resume: () => this.view.resume(),
       currentImage: (): CurrentImage | null => this.view.currentImage(),
     };
-    this.view.start({
+    this.viewHost = {
       element: elements.viewport,
       context: this.context,
       rendererOptions: () => this.rendererOptions(),
@@ -53,7 +54,8 @@ export class DemoApp {
       onProgress: (p) => this.readouts.progress(p),
       onStatus: (text, kind) => this.readouts.status(text, kind),
       onNotes: (notes) => this.readouts.setNotes(notes),
-    });
+    };
+    this.view.start(this.viewHost);
     attachOrbitControls(
       elements.viewport,
       () => this.orbit ?? new OrbitCamera({ position: [0, 0, 1], target: [0, 0, 0] }),
@@ -72,6 +74,14 @@ export class DemoApp {
     this.orbit = new OrbitCamera(scene.description.camera);
     for (const feature of this.features) feature.sceneLoaded?.(scene);
     this.view.setScene(scene, this.orbit.camera());
+  }
+
+  /** Replaces the view (path traced, raster, ...), keeping the scene and the camera. */
+  switchView(view: DemoView): void {
+    this.view.stop();
+    this.view = view;
+    view.start(this.viewHost);
+    if (this.scene && this.orbit) view.setScene(this.scene, this.orbit.camera());
   }
 
   /** Back to the scene's own camera. */

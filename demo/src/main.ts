@@ -47,6 +47,10 @@ async function main(): Promise<void> {
     const scene = builtInScenes.find((s) => s.id === id);
     if (scene) app.showScene(scene.create());
   });
+  if (demoViews.length > 1) {
+    const views = demoViews.map((create) => create());
+    selectControl(sceneBox, 'view', 'View', views.map((v) => ({ value: v.id, label: v.label })), views[0]!.id, (id) => app.switchView(demoViews[views.findIndex((v) => v.id === id)]!()));
+  }
   const fileInput = Object.assign(document.createElement('input'), { type: 'file', multiple: true, accept: acceptedExtensions.join(',') });
   fileInput.dataset.control = 'file';
   const fileLabel = Object.assign(document.createElement('label'), { className: 'file-button', textContent: 'Open .glb / .gltf…' });

@@ -59,9 +59,6 @@ export function browserBuildOptions(project: ConsumerProject, options: BuildOpti
     target: 'es2022',
     logLevel: 'silent',
     absWorkingDir: project.dir,
-    // The package's folder is a symlink to a build that may sit outside the repo (a fresh compile in
-    // a temporary folder): its dependencies are found on this path, as an installed copy finds them.
-    nodePaths: [join(repoRoot, 'node_modules')],
     ...options,
   };
 }

@@ -32,7 +32,7 @@ function uniformColourSource(): EnvironmentSource {
         hex = value;
         context.rebuild();
       });
-      strengthInput = rangeControl(parent, 'environment-strength', 'Strength', { min: 0, max: 2, step: 0.01, value: strength, format }, (value) => {
+      strengthInput = rangeControl(parent, 'environment-strength', 'Strength', { min: 0, max: 2, step: 0.01, value: strength, format, commit: true }, (value) => {
         strength = value;
         context.rebuild();
       });

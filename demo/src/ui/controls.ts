@@ -39,12 +39,15 @@ export function selectControl<T extends string>(parent: HTMLElement, id: string,
 
 const rangeFormats = new WeakMap<HTMLInputElement, (v: number) => string>();
 
-/** A slider with its value printed beside it; `onInput` fires while dragging. */
+/**
+ * A slider with its value printed beside it. `onInput` fires while dragging, or with
+ * `commit: true` once on release (for settings that rebuild the renderer).
+ */
 export function rangeControl(
   parent: HTMLElement,
   id: string,
   label: string,
-  options: { min: number; max: number; step: number; value: number; format?: (v: number) => string },
+  options: { min: number; max: number; step: number; value: number; format?: (v: number) => string; commit?: boolean },
   onInput: (value: number) => void,
 ): HTMLInputElement {
   const format = options.format ?? ((v: number) => String(v));
@@ -52,8 +55,9 @@ export function rangeControl(
   const output = element('output', { textContent: format(options.value) });
   input.addEventListener('input', () => {
     output.textContent = format(Number(input.value));
-    onInput(Number(input.value));
+    if (!options.commit) onInput(Number(input.value));
   });
+  if (options.commit) input.addEventListener('change', () => onInput(Number(input.value)));
   row(parent, id, label, input).append(output);
   rangeFormats.set(input, format);
   return input;
@@ -68,7 +72,8 @@ export function setRangeValue(input: HTMLInputElement, value: number): void {
 
 export function colourControl(parent: HTMLElement, id: string, label: string, hex: string, onInput: (hex: string) => void): HTMLInputElement {
   const input = element('input', { type: 'color', value: hex });
-  input.addEventListener('input', () => onInput(input.value));
+  // 'change' fires when the picker closes: one rebuild per chosen colour.
+  input.addEventListener('change', () => onInput(input.value));
   row(parent, id, label, input);
   return input;
 }
