@@ -25,7 +25,7 @@ test('the check finds a static node: import deep in a graph and ignores dynamic 
 test('the package ESM entry reaches no Node-only module through static imports', { timeout: 180_000 }, async (t) => {
   const project = createConsumerProject();
   t.after(() => project.cleanup());
-  const { edges, metafile } = await staticNodeImports(project.packageEntry, { external: ['*.wasm'] });
+  const { edges, metafile } = await staticNodeImports(project.packageEntry, { absWorkingDir: project.dir, external: ['*.wasm'] });
   const own = packageInputs(project, metafile);
   assert.ok(own.length > 50, `the graph includes the package's modules (${own.length})`);
   assert.ok(Object.keys(metafile.inputs).some((p) => p.includes('@gltf-transform/core')), 'and its dependencies');
