@@ -160,13 +160,13 @@ export async function createRasterRenderer(options: RasterRendererOptions): Prom
     e.beginRenderPass({ colorAttachments: [], depthStencilAttachment: { view: shadowMap.createView(), depthClearValue: 1, depthLoadOp: 'clear', depthStoreOp: 'store' } }).end();
     device.queue.submit([e.finish()]);
   }
-  const frameGroup = device.createBindGroup({
+  const frameGroupWith = (shadowView: GPUTextureView): GPUBindGroup => device.createBindGroup({
     label: 'raster frame',
     layout: pipelines.drawLayouts[0]!,
     entries: [
       { binding: 0, resource: { buffer: frameBuffer } },
       { binding: 1, resource: { buffer: lightBuffer } },
-      { binding: 2, resource: shadowMap.createView() },
+      { binding: 2, resource: shadowView },
       { binding: 3, resource: device.createSampler({ compare: 'less-equal', magFilter: 'linear', minFilter: 'linear' }) },
       { binding: 4, resource: environment.specularView },
       { binding: 5, resource: device.createSampler({ addressModeU: 'repeat', addressModeV: 'clamp-to-edge', magFilter: 'linear', minFilter: 'linear', mipmapFilter: 'linear' }) },
@@ -175,6 +175,10 @@ export async function createRasterRenderer(options: RasterRendererOptions): Prom
       { binding: 8, resource: { buffer: environment.irradianceSh } },
     ],
   });
+  const frameGroup = frameGroupWith(shadowMap.createView());
+  // The shadow pass writes the map, so its frame group binds a placeholder there.
+  const shadowPlaceholder = device.createTexture({ label: 'raster shadow placeholder', size: { width: 1, height: 1 }, format: SHADOW_FORMAT, usage: TextureUsage.TEXTURE_BINDING });
+  const shadowPassFrameGroup = frameGroupWith(shadowPlaceholder.createView());
   const drawGroup = device.createBindGroup({ label: 'raster draw', layout: pipelines.drawLayouts[2]!, entries: [{ binding: 0, resource: { buffer: drawBuffer, size: rasterDrawLayout.size } }] });
 
   let width = validated.width;
@@ -342,8 +346,7 @@ export async function createRasterRenderer(options: RasterRendererOptions): Prom
       if (shadowLight >= 0) {
         const pass = encoder.beginRenderPass({ colorAttachments: [], depthStencilAttachment: { view: shadowMap.createView(), depthClearValue: 1, depthLoadOp: 'clear', depthStoreOp: 'store' } });
         pass.setPipeline(pipelines.shadow());
-        pass.setBindGroup(0, frameGroup);
-        pass.setBindGroup(1, draws[0]?.material.bindGroup ?? materials[0]?.bindGroup ?? frameGroup);
+        pass.setBindGroup(0, shadowPassFrameGroup);
         draws.forEach((d, i) => {
           if (!d.visible || d.material.blend) return;
           pass.setBindGroup(1, d.material.bindGroup);
@@ -440,6 +443,7 @@ export async function createRasterRenderer(options: RasterRendererOptions): Prom
       shBlank.destroy();
       for (const b of [frameBuffer, drawBuffer, lightBuffer]) b.destroy();
       shadowMap.destroy();
+      shadowPlaceholder.destroy();
       attachments?.color?.destroy();
       attachments?.depth.destroy();
       attachments?.hdr.destroy();
