@@ -9,3 +9,7 @@ export type {
   RasterShadowOptions,
   RasterCameraState,
 } from './types.ts';
+export { createAnimatedSceneRenderer } from './animated/animated-scene-renderer.ts';
+export { createProfessionalAnimatedSceneRenderer } from './animated/professional-renderer.ts';
+export { builtInPropKinds } from './animated/prop-meshes.ts';
+export type { AnimatedSceneRenderer, AnimatedSceneRendererOptions, AnimatedSceneSnapshot } from './animated/animated-types.ts';
