@@ -18,6 +18,7 @@ import { runPathTracerComparison } from './pathtracer-compare.ts';
 import type { PathTracerVersion } from './pathtracer-compare.ts';
 import type { SceneComparison, Spread, VersionSceneSummary } from './pathtracer-summary.ts';
 import { runBvhBenchmark } from './bvh.ts';
+import { runRasterBenchmark } from './raster.ts';
 import { isCpuAdapter } from './cpu-clock.ts';
 
 const repoRoot = fileURLToPath(new URL('..', import.meta.url)).replace(/\/$/, '');
@@ -168,6 +169,15 @@ if (options.pathTracer && existsSync(new URL('./pathtracer.ts', import.meta.url)
     current: { name: currentName, head, uncommittedChanges: dirty },
     ...comparison,
   };
+}
+
+// Raster renderer (bench/raster.ts): off with --bvh-only or BENCH_RASTER=0.
+if (options.pathTracer && process.env.BENCH_RASTER !== '0') {
+  console.log('\nRaster renderer: 4x MSAA, shadow map, prefiltered environment; GPU-skinned characters');
+  const raster = await runRasterBenchmark();
+  results.raster = raster;
+  console.log(`  adapter: ${raster.adapter}`);
+  console.table(raster.rows.map((r) => ({ characters: r.characters, size: `${r.width}x${r.height}`, 'frame ms': r.medianFrameMs.toFixed(1), 'skinned vertices/s': Math.round(r.skinnedVerticesPerSecond) })));
 }
 
 results.totalSeconds = (performance.now() - began) / 1000;
