@@ -23,7 +23,7 @@ export async function generateRasterPrograms(sources: WeslSources): Promise<numb
     try {
       wgsl = (await linkProgram(spec.module, extra, sources)).dest.trim();
     } catch (error) {
-      throw new Error(`linking raster program ${name} (${spec.module}) failed:\n${(error as Error).message}`);
+      throw new Error(`linking raster program ${name} (${spec.module}) failed:\n${(error as Error).message}`, { cause: error });
     }
     const reflection = reflectProgram(wgsl, name);
     for (const b of reflection.bindings) {

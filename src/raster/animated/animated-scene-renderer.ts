@@ -7,7 +7,7 @@
  */
 import { WebIO, type Document } from '@gltf-transform/core';
 import { ALL_EXTENSIONS } from '@gltf-transform/extensions';
-import { mat4d, vec3d } from 'wgpu-matrix';
+import { mat4d } from 'wgpu-matrix';
 import { createAnimatedSceneCore, type AnimatedSceneCore, type AnimatedSceneFrame } from '../../animation/animated-scene-core.ts';
 import type { CameraRigOutput } from '../../animation/camera/camera-types.ts';
 import { GpuRendererError } from '../../errors/gpu-renderer-error.ts';

@@ -3,7 +3,6 @@
  * forward shading (per blend mode, cull mode and winding), shadow depth, background, resolve, and
  * the compute programs (skinning, IBL precomputation).
  */
-import { GpuRendererError } from '../../errors/gpu-renderer-error.ts';
 import { generatedRasterPrograms } from '../shaders/raster-programs.generated.ts';
 import type { RasterProgramName } from '../shaders/raster-programs.ts';
 import { createRasterGroupLayout } from './raster-bindings.ts';
@@ -139,17 +138,4 @@ export function createRasterPipelines(device: GPUDevice, sampleCount: number): R
         }),
       ),
   };
-}
-
-/** Runs `make` in a validation error scope and turns a GPU validation error into a typed error. */
-export async function checkedGpu<T>(device: GPUDevice, what: string, make: () => T): Promise<T> {
-  device.pushErrorScope('validation');
-  let value: T;
-  try {
-    value = make();
-  } finally {
-    const error = await device.popErrorScope();
-    if (error) throw new GpuRendererError('GPU_VALIDATION_FAILED', `${what}: ${error.message}`);
-  }
-  return value;
 }
