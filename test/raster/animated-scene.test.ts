@@ -119,3 +119,46 @@ test('snapshot fields equal the timeline, movement and camera-rig values', async
   assert.ok(Math.abs(looking.headLook.yaw - 0.3) < 1e-12);
   assert.equal(looking.clipTimeMs, walking.clipTimeMs);
 });
+
+test('start() runs frames on the injected requestAnimationFrame with scene time from the first timestamp; stop() cancels', async (t) => {
+  const queue = new Map<number, (ts: number) => void>();
+  let next = 1;
+  const frames: { frame: number; timeMs: number; clipTimeMs: number }[] = [];
+  let done: () => void = () => undefined;
+  let loopError: unknown = null;
+  const renderer = await adventure({
+    msaa: 1,
+    requestAnimationFrame: (cb: (ts: number) => void) => {
+      queue.set(next, cb);
+      return next++;
+    },
+    cancelAnimationFrame: (handle: unknown) => queue.delete(handle as number),
+    onError: (error: unknown) => {
+      loopError = error;
+      done();
+    },
+    onFrame: (s: { frame: number; timeMs: number; clipTimeMs: number }) => {
+      frames.push({ frame: s.frame, timeMs: s.timeMs, clipTimeMs: s.clipTimeMs });
+      done();
+    },
+  });
+  t.after(() => renderer.destroy());
+  renderer.start();
+  const fire = async (timestamp: number): Promise<void> => {
+    const rendered = new Promise<void>((resolve) => (done = resolve));
+    const [handle, cb] = [...queue.entries()][0]!;
+    queue.delete(handle);
+    cb(timestamp);
+    await rendered;
+  };
+  await fire(10_000);
+  await fire(10_400);
+  assert.equal(loopError, null);
+  assert.deepEqual(frames.map((f) => f.timeMs), [0, 400]);
+  assert.deepEqual(frames.map((f) => f.frame), [1, 2]);
+  // Idle clip time follows scene time (the idle beat plays from 0 ms).
+  assert.equal(frames[1]!.clipTimeMs, 400);
+  assert.equal(renderer.getSnapshot()!.timeMs, 400);
+  renderer.stop();
+  assert.equal(queue.size, 0, 'stop cancels the pending frame');
+});

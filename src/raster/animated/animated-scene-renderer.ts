@@ -270,16 +270,26 @@ export async function createAnimatedRenderer(options: AnimatedSceneRendererOptio
     clockMs = timestamp - clockStart;
     if (!inFlight) {
       inFlight = true;
-      renderAt(clockMs)
-        .then((s) => options.onFrame?.(s))
-        .catch((error: unknown) => {
-          stopLoop();
-          if (options.onError) options.onError(error);
-          else console.error('[gpu-renderer] animated scene frame failed; the loop stopped', error);
-        })
-        .finally(() => {
+      // A tick that finds the previous frame still on the GPU skips drawing (frames never queue up).
+      const fail = (error: unknown): void => {
+        stopLoop();
+        if (options.onError) options.onError(error);
+        else console.error('[gpu-renderer] animated scene frame failed; the loop stopped', error);
+      };
+      renderAt(clockMs).then(
+        (s) => {
           inFlight = false;
-        });
+          try {
+            options.onFrame?.(s);
+          } catch (error) {
+            fail(error);
+          }
+        },
+        (error: unknown) => {
+          inFlight = false;
+          fail(error);
+        },
+      );
     }
     if (running) handle = scheduler.request(tick);
   };
