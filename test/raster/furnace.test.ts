@@ -61,3 +61,12 @@ test('uniform environment map prefiltered on the GPU: the same radiances, and th
   const metal = await renderSphere(conductor, { environmentMap: map });
   expectPixel(metal.center, L, 1, 'conductor centre');
 });
+
+test('extensions under a uniform environment: ior-1 transmission passes L, a clearcoat over black reflects 0.04 L head-on', async () => {
+  // KHR_materials_transmission with ior 1 and a white base: the refracted ray sees L, no Fresnel loss.
+  const transmissive = await renderSphere({ baseColorFactor: [1, 1, 1, 1], metallicFactor: 0, roughnessFactor: 0, ior: 1, transmissionFactor: 1 }, { environment: { color: L } });
+  expectPixel(transmissive.center, L, 1, 'transmission');
+  // KHR_materials_clearcoat (f0 0.04, smooth) over a black base: at normal incidence the split sum is 0.04 L.
+  const coated = await renderSphere({ baseColorFactor: [0, 0, 0, 1], metallicFactor: 0, roughnessFactor: 1, ior: 1, clearcoatFactor: 1, clearcoatRoughnessFactor: 0 }, { environment: { color: L } });
+  expectPixel(coated.center, L.map((c) => 0.04 * c), 2, 'clearcoat');
+});
