@@ -7,6 +7,8 @@
  *   --bvh-only       | BENCH_ONLY=bvh       run the BVH build benchmark alone
  *   --no-gltf        | BENCH_GLTF=0         skip the glTF benchmark (load + BVH, textures)
  *   --gltf-only      | BENCH_ONLY=gltf      run the glTF benchmark alone
+ *   --no-raster      | BENCH_RASTER=0       skip the raster renderer benchmark
+ *   --raster-only    | BENCH_ONLY=raster    run the raster renderer benchmark alone
  * The command line wins over the environment. BENCH_SPP is read by the path tracer harnesses.
  */
 import { parseArgs } from 'node:util';
@@ -24,6 +26,7 @@ export interface BenchOptions {
   bvh: boolean;
   /** Run the glTF benchmark (bench/gltf.ts). */
   gltf: boolean;
+  raster: boolean;
   /** Run the path tracer comparison (off with --bvh-only / --gltf-only). */
   pathTracer: boolean;
 }
@@ -65,6 +68,8 @@ export function parseBenchOptions(
       'bvh-only': { type: 'boolean' },
       'no-gltf': { type: 'boolean' },
       'gltf-only': { type: 'boolean' },
+      'no-raster': { type: 'boolean' },
+      'raster-only': { type: 'boolean' },
     },
     strict: true,
     allowPositionals: false,
@@ -80,15 +85,19 @@ export function parseBenchOptions(
 
   const roundsText = values.rounds ?? env.BENCH_ROUNDS;
   const rounds = roundsText === undefined || roundsText === '' ? DEFAULT_ROUNDS : positiveInteger(roundsText, values.rounds !== undefined ? '--rounds' : 'BENCH_ROUNDS');
-  const bvhOnly = values['bvh-only'] === true || env.BENCH_ONLY?.toLowerCase() === 'bvh';
-  const gltfOnly = values['gltf-only'] === true || env.BENCH_ONLY?.toLowerCase() === 'gltf';
-  if (values['bvh-only'] && values['gltf-only']) throw new Error('--bvh-only and --gltf-only exclude each other');
-  if (bvhOnly && values['no-bvh']) throw new Error('--bvh-only and --no-bvh exclude each other');
-  if (gltfOnly && values['no-gltf']) throw new Error('--gltf-only and --no-gltf exclude each other');
-  // The command line's --x-only wins over BENCH_ONLY.
-  const only = values['bvh-only'] ? 'bvh' : values['gltf-only'] ? 'gltf' : bvhOnly ? 'bvh' : gltfOnly ? 'gltf' : null;
+  // One part alone: --x-only on the command line, else BENCH_ONLY=x.
+  const parts = ['bvh', 'gltf', 'raster'] as const;
+  const flagged = parts.filter((p) => values[`${p}-only`] === true);
+  if (flagged.length > 1) throw new Error(`--${flagged[0]}-only and --${flagged[1]}-only exclude each other`);
+  const fromEnv = parts.find((p) => env.BENCH_ONLY?.toLowerCase() === p);
+  const only = flagged[0] ?? fromEnv ?? null;
+  for (const p of parts) {
+    if (only === p && values[`no-${p}`]) throw new Error(`--${p}-only and --no-${p} exclude each other`);
+  }
   const off = (name: string | undefined): boolean => name !== undefined && OFF.has(name.toLowerCase());
-  const bvh = only === 'bvh' || (only === null && !values['no-bvh'] && !off(env.BENCH_BVH));
-  const gltf = only === 'gltf' || (only === null && !values['no-gltf'] && !off(env.BENCH_GLTF));
-  return { baseline, rounds, bvh, gltf, pathTracer: only === null };
+  const on = (p: (typeof parts)[number], variable: string | undefined): boolean => only === p || (only === null && !values[`no-${p}`] && !off(variable));
+  const bvh = on('bvh', env.BENCH_BVH);
+  const gltf = on('gltf', env.BENCH_GLTF);
+  const raster = on('raster', env.BENCH_RASTER);
+  return { baseline, rounds, bvh, gltf, raster, pathTracer: only === null };
 }

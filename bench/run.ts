@@ -21,6 +21,7 @@ import type { SceneComparison, Spread, VersionSceneSummary } from './pathtracer-
 import { runBvhBenchmark } from './bvh.ts';
 import { runNodeChild } from './child-protocol.ts';
 import { printGltfResult, type GltfBenchResult } from './gltf.ts';
+import { runRasterBenchmark } from './raster.ts';
 import { isCpuAdapter } from './cpu-clock.ts';
 
 const repoRoot = fileURLToPath(new URL('..', import.meta.url)).replace(/\/$/, '');
@@ -43,7 +44,7 @@ let options: BenchOptions;
 try {
   options = parseBenchOptions(process.argv.slice(2), process.env, await readBaselineFile());
 } catch (error) {
-  console.error(`bench: ${(error as Error).message}\nusage: npm run bench -- [--baseline <ref> | --no-baseline] [--rounds <n>] [--no-bvh | --bvh-only] [--no-gltf | --gltf-only]`);
+  console.error(`bench: ${(error as Error).message}\nusage: npm run bench -- [--baseline <ref> | --no-baseline] [--rounds <n>] [--no-bvh | --bvh-only] [--no-gltf | --gltf-only] [--no-raster | --raster-only]`);
   process.exit(2);
 }
 
@@ -186,6 +187,15 @@ if (options.pathTracer && existsSync(new URL('./pathtracer.ts', import.meta.url)
     current: { name: currentName, head, uncommittedChanges: dirty },
     ...comparison,
   };
+}
+
+// Raster renderer (bench/raster.ts): off with --no-raster / BENCH_RASTER=0 or another --x-only.
+if (options.raster) {
+  console.log('\nRaster renderer: 4x MSAA, shadow map, prefiltered environment; GPU-skinned characters');
+  const raster = await runRasterBenchmark();
+  results.raster = raster;
+  console.log(`  adapter: ${raster.adapter}`);
+  console.table(raster.rows.map((r) => ({ characters: r.characters, size: `${r.width}x${r.height}`, 'frame ms': r.medianFrameMs.toFixed(1), 'skinned vertices/s': Math.round(r.skinnedVerticesPerSecond) })));
 }
 
 results.totalSeconds = (performance.now() - began) / 1000;
