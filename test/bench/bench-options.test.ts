@@ -70,3 +70,15 @@ test('bench/baseline.json: a ref is required, the description is optional', () =
   assert.equal(parseBaselineFile('[]'), null);
   assert.throws(() => parseBaselineFile('{'));
 });
+
+test('raster knobs: on by default, --no-raster / BENCH_RASTER=0 skip it, --raster-only / BENCH_ONLY=raster run it alone', () => {
+  assert.equal(parseBenchOptions([], {}, file).raster, true);
+  assert.equal(parseBenchOptions(['--no-raster'], {}, file).raster, false);
+  assert.equal(parseBenchOptions([], { BENCH_RASTER: '0' }, file).raster, false);
+  for (const o of [parseBenchOptions(['--raster-only'], {}, file), parseBenchOptions([], { BENCH_ONLY: 'raster' }, file)]) {
+    assert.deepEqual([o.raster, o.bvh, o.gltf, o.pathTracer], [true, false, false, false]);
+  }
+  assert.equal(parseBenchOptions(['--bvh-only'], {}, file).raster, false);
+  assert.throws(() => parseBenchOptions(['--raster-only', '--no-raster'], {}, file), /exclude/);
+  assert.throws(() => parseBenchOptions(['--raster-only', '--gltf-only'], {}, file), /exclude/);
+});
