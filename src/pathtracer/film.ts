@@ -1,9 +1,14 @@
+import { luminance } from '../lighting/emissive-lights.ts';
+import type { WavefrontAovName } from '../post/aovs.ts';
 import { readGpuBuffer } from './gpu-buffers.ts';
 import type { WavefrontRadianceImage } from './types.ts';
 
 /**
- * Reads of the film: the accumulation holds radiance sums with the sample count in alpha, the AOV
- * film holds sums of (albedo, depth) and (normal, hits) per pixel; readers divide by the count.
+ * Reads of the film: the accumulation holds radiance sums with the sample count in alpha; the AOV
+ * film sums of (albedo, depth) and (normal, hits) per pixel; the moments film the sum of the
+ * even-indexed samples with their count, and the sums of squared radiance and squared luminance; the
+ * id film 1 + the instance index of the pixel's first sample that reached a non-specular surface.
+ * Readers divide by the sample count.
  */
 export async function readMeanRadiance(device: GPUDevice, film: GPUBuffer, width: number, height: number): Promise<WavefrontRadianceImage> {
   const raw = new Float32Array(await readGpuBuffer(device, film, width * height * 16));
@@ -19,20 +24,75 @@ export async function readMeanRadiance(device: GPUDevice, film: GPUBuffer, width
   return { width, height, data };
 }
 
-export type AovName = 'albedo' | 'normal' | 'depth';
+/** Reads RGBA float32 pixels stored as (rgb, 1) (the denoiser's output). */
+export async function readRgbaImage(device: GPUDevice, buffer: GPUBuffer, width: number, height: number): Promise<WavefrontRadianceImage> {
+  return { width, height, data: new Float32Array(await readGpuBuffer(device, buffer, width * height * 16)) };
+}
 
-export async function readMeanAov(device: GPUDevice, film: GPUBuffer, aovs: GPUBuffer, name: AovName, width: number, height: number): Promise<WavefrontRadianceImage> {
+/** @deprecated Use WavefrontAovName. */
+export type AovName = WavefrontAovName;
+
+export interface FilmBuffers {
+  film: GPUBuffer;
+  aovs: GPUBuffer;
+  moments: GPUBuffer;
+  ids: GPUBuffer;
+}
+
+/** Object id and material index of every instance (the id AOVs map instance indices through these). */
+export interface InstanceIds {
+  objectIds: Int32Array;
+  materialIds: Int32Array;
+}
+
+/**
+ * Unbiased variance of the mean of n samples from their sum and sum of squares:
+ * (sum2 - sum^2 / n) / ((n - 1) n); +Infinity below two samples (unknown), never negative.
+ */
+export function varianceOfMean(sum: number, sum2: number, n: number): number {
+  if (!(n >= 2)) return Infinity;
+  return Math.max(sum2 - (sum * sum) / n, 0) / ((n - 1) * n);
+}
+
+/**
+ * One AOV as RGBA float32, top row first (see WavefrontPathTracingRenderer.readAov for what each
+ * channel holds).
+ */
+export async function readAovImage(device: GPUDevice, buffers: FilmBuffers, name: WavefrontAovName, width: number, height: number, ids: InstanceIds): Promise<WavefrontRadianceImage> {
   const pixels = width * height;
-  const counts = new Float32Array(await readGpuBuffer(device, film, pixels * 16));
-  const raw = new Float32Array(await readGpuBuffer(device, aovs, pixels * 32));
+  const counts = new Float32Array(await readGpuBuffer(device, buffers.film, pixels * 16));
   const data = new Float32Array(pixels * 4);
+  if (name === 'sampleCount') {
+    for (let i = 0; i < pixels; i++) data.set([counts[4 * i + 3]!, 0, 0, 1], 4 * i);
+    return { width, height, data };
+  }
+  if (name === 'objectId' || name === 'materialId') {
+    const raw = new Uint32Array(await readGpuBuffer(device, buffers.ids, pixels * 4));
+    const table = name === 'objectId' ? ids.objectIds : ids.materialIds;
+    for (let i = 0; i < pixels; i++) data.set([raw[i]! === 0 ? -1 : table[raw[i]! - 1]!, 0, 0, 1], 4 * i);
+    return { width, height, data };
+  }
+  if (name === 'variance') {
+    const raw = new Float32Array(await readGpuBuffer(device, buffers.moments, pixels * 32));
+    for (let i = 0; i < pixels; i++) {
+      const n = counts[4 * i + 3]!;
+      const sum = [counts[4 * i]!, counts[4 * i + 1]!, counts[4 * i + 2]!];
+      const sum2 = [raw[8 * i + 4]!, raw[8 * i + 5]!, raw[8 * i + 6]!];
+      data.set([0, 1, 2].map((c) => varianceOfMean(sum[c]!, sum2[c]!, n)), 4 * i);
+      // Luminance is linear, so the luminance of the radiance sum is the sum of the luminances.
+      data[4 * i + 3] = varianceOfMean(luminance(sum), raw[8 * i + 7]!, n);
+    }
+    return { width, height, data };
+  }
+  const raw = new Float32Array(await readGpuBuffer(device, buffers.aovs, pixels * 32));
   for (let i = 0; i < pixels; i++) {
     const n = counts[4 * i + 3]!;
     const inv = n > 0 ? 1 / n : 0;
     const o = 8 * i;
-    if (name === 'albedo') data.set([raw[o]! * inv, raw[o + 1]! * inv, raw[o + 2]! * inv, 1], 4 * i);
-    else if (name === 'depth') data.set([raw[o + 3]! * inv, 0, 0, 1], 4 * i);
-    else data.set([raw[o + 4]! * inv, raw[o + 5]! * inv, raw[o + 6]! * inv, 1], 4 * i);
+    const coverage = raw[o + 7]! * inv;
+    if (name === 'albedo') data.set([raw[o]! * inv, raw[o + 1]! * inv, raw[o + 2]! * inv, coverage], 4 * i);
+    else if (name === 'depth') data.set([raw[o + 3]! * inv, 0, 0, coverage], 4 * i);
+    else data.set([raw[o + 4]! * inv, raw[o + 5]! * inv, raw[o + 6]! * inv, coverage], 4 * i);
   }
   return { width, height, data };
 }
