@@ -49,7 +49,7 @@ export const pathTracerBindings = {
   counters: { group: G.transport, binding: 5, kind: 'storage', access: 'read_write', type: 'array<atomic<u32>, QUEUE_COUNTER_COUNT>', doc: 'queue lengths and statistics' },
   samples: { group: G.transport, binding: 6, kind: 'storage', access: 'read_write', type: 'array<SampleRecord>', doc: 'radiance and AOVs of every path sample' },
   film: { group: G.transport, binding: 7, kind: 'storage', access: 'read_write', type: 'array<vec4f>', doc: 'full-frame accumulation: radiance sum, sample count' },
-  filmAovs: { group: G.transport, binding: 11, kind: 'storage', access: 'read_write', type: 'array<vec4f>', doc: 'AOV sums per pixel: (albedo, depth), (normal, hits)' },
+  filmAovs: { group: G.transport, binding: 11, kind: 'storage', access: 'read_write', type: 'array<vec4f>', doc: 'AOV sums per pixel: (albedo, depth), (normal, hits), (emission, squared luminance of the radiance without it)' },
   dispatchArgs: { group: G.transport, binding: 8, kind: 'storage', access: 'read_write', type: 'array<u32>', doc: 'indirect dispatch arguments written from queue lengths' },
   wave: { group: G.transport, binding: 9, kind: 'uniform', dynamic: true, type: 'WaveUniforms', doc: 'per-wave constants' },
   bounce: { group: G.transport, binding: 10, kind: 'uniform', dynamic: true, type: 'BounceUniforms', doc: 'per-bounce constants' },
@@ -62,7 +62,7 @@ export const pathTracerBindings = {
   adaptivePixels: { group: G.transport, binding: 20, kind: 'storage', access: 'read_write', type: 'array<atomic<u32>>', doc: 'counts (ADAPTIVE_* slots), then the indices of the pixels still sampling' },
   denoise: { group: G.transport, binding: 21, kind: 'uniform', type: 'DenoiseUniforms', doc: 'constants of one denoiser pass' },
   denoiseColor: { group: G.transport, binding: 22, kind: 'storage', access: 'read_write', type: 'array<vec4f>', doc: 'two halves: demodulated radiance and its luminance variance' },
-  denoiseGuide: { group: G.transport, binding: 23, kind: 'storage', access: 'read_write', type: 'array<vec4f>', doc: 'per pixel: (albedo, depth), (normal, coverage)' },
+  denoiseGuide: { group: G.transport, binding: 23, kind: 'storage', access: 'read_write', type: 'array<vec4f>', doc: 'per pixel: (albedo, depth), (normal, coverage), (emission, 0)' },
   denoised: { group: G.transport, binding: 24, kind: 'storage', access: 'read_write', type: 'array<vec4f>', doc: 'denoised radiance (rgb, 1)' },
 } as const satisfies Record<string, BindingSpec>;
 

@@ -262,6 +262,7 @@ export const sampleRecordLayout: StructLayout = defineStructLayout('SampleRecord
   ['depth', 'f32', 'distance from the camera to the first hit'],
   ['normal', 'vec3f', 'world shading normal'],
   ['objectId', 'u32', 'instance index of the first non-specular hit (readAov maps it to object and material ids)'],
+  ['emission', 'vec3f', 'emitted radiance committed at the first non-specular hit (emission AOV; the denoiser leaves it out)'],
   ['emitterLuminance', 'f32', 'luminance committed from emitter hits (MIS-weighted)'],
   ['environmentLuminance', 'f32', 'luminance committed from escaped paths'],
   ['invalid', 'u32', '1 once a contribution of this sample was dropped as NaN, Inf or negative'],

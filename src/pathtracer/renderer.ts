@@ -244,6 +244,7 @@ class WavefrontRenderer extends EventTarget implements WavefrontPathTracingRende
       filmMoments: S | BufferUsage.COPY_SRC | BufferUsage.COPY_DST,
       filmIds: S | BufferUsage.COPY_SRC | BufferUsage.COPY_DST,
       adaptive: BufferUsage.UNIFORM | BufferUsage.COPY_DST,
+      adaptiveError: S | BufferUsage.COPY_SRC,
       adaptivePixels: S | BufferUsage.COPY_SRC | BufferUsage.COPY_DST,
       denoise: BufferUsage.UNIFORM | BufferUsage.COPY_DST,
       denoised: S | BufferUsage.COPY_SRC,
@@ -566,7 +567,8 @@ class WavefrontRenderer extends EventTarget implements WavefrontPathTracingRende
     if (!isWavefrontAovName(name)) throw new GpuRendererError('INVALID_OPTION', `unknown AOV ${JSON.stringify(name)} (${wavefrontAovNames.join(', ')})`, { field: 'name' });
     if (name !== 'sampleCount' && !this.config.aovs) throw new GpuRendererError('INVALID_STATE', 'AOVs were not enabled: create the renderer with aovs: true', { field: 'aovs' });
     const r = this.resources;
-    return readAovImage(this.device, { film: r.film, aovs: r.filmAovs, moments: r.filmMoments, ids: r.filmIds }, name, this.config.width, this.config.height, this.instanceIds);
+    const adaptive = this.adaptive ? { error: r.adaptiveError, pixels: r.adaptivePixels } : null;
+    return readAovImage(this.device, { film: r.film, aovs: r.filmAovs, moments: r.filmMoments, ids: r.filmIds, adaptive }, name, this.config.width, this.config.height, this.instanceIds);
   }
 
   async readPixels(): Promise<WavefrontPixelImage> {

@@ -179,12 +179,15 @@ export interface WavefrontPathTracingRenderer extends EventTarget {
   readDenoised(): Promise<WavefrontRadianceImage>;
   /**
    * An AOV, RGBA float32, top row first (all but sampleCount need `aovs: true`):
-   * 'albedo' (rgb), 'normal' (world shading normal xyz), 'depth' (distance from the eye, in r) are
-   * means over the samples with alpha = coverage (the share of samples that reached a non-specular
+   * 'albedo' (rgb), 'normal' (world shading normal xyz), 'depth' (distance from the eye, in r) and
+   * 'emission' (rgb: emitted radiance reaching the eye from the first non-specular hit) are means
+   * over the samples with alpha = coverage (the share of samples that reached a non-specular
    * surface; the others contribute zeros); 'objectId' and 'materialId' (r; -1 where no sample
    * reached a surface) come from the pixel's first sample that did; 'variance' is the variance of
-   * the mean radiance per channel (rgb) and of its luminance (alpha), +Infinity below two samples;
-   * 'sampleCount' (r) the samples the pixel received.
+   * the mean radiance per channel (rgb) and of the mean luminance of the radiance without the
+   * emission (alpha: the noise the denoiser filters), +Infinity below two samples;
+   * 'sampleCount' (r) the samples the pixel received, with adaptive sampling also the error of the
+   * last convergence test (g; 3.4e38 below the minimum samples) and whether the pixel still samples (b).
    */
   readAov(name: WavefrontAovName): Promise<WavefrontRadianceImage>;
   /** What the canvas shows: tone-mapped (or linear) RGBA8 of the raw or denoised image. */
