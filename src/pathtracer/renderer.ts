@@ -1,7 +1,7 @@
 import { GpuRendererError } from '../errors/gpu-renderer-error.ts';
 import { acquireGpuDevice } from '../gpu/acquire-device.ts';
 import { BufferUsage } from '../gpu/webgpu-constants.ts';
-import { queueCounterCount, rendererWavefrontComputeWorkgroupSize } from '../gpu-layout/constants.ts';
+import { queueCounterCount, queueCounterSlots, rendererWavefrontComputeWorkgroupSize } from '../gpu-layout/constants.ts';
 import { luminance } from '../lighting/emissive-lights.ts';
 import { uploadTextureAtlas } from '../materials/textures/upload-texture-atlas.ts';
 import { normalizeWavefrontScene, type NormalizedScene } from '../scene/normalize-scene.ts';
@@ -367,6 +367,10 @@ class WavefrontRenderer extends EventTarget implements WavefrontPathTracingRende
     this.denoisedFresh = false;
     const outcome: FrameOutcome = { samplesAdded: 0, waves: 0, submissions: 0, tally, pixelSamples: 0 };
     const adaptive = this.adaptive;
+    // The list length of the step before: each step is sized by the count of the one before the
+    // previous, so the GPU always has the next step queued while the CPU waits for a count (the
+    // waves bound themselves by the GPU's own count; a pixel the stale count leaves out waits a step).
+    let pendingCount: Promise<unknown> | null = null;
     while (outcome.samplesAdded < frame.ceiling) {
       if (adaptive && adaptive.counts.activePixels === 0) break;
       const rendered = outcome.samplesAdded;
@@ -385,9 +389,14 @@ class WavefrontRenderer extends EventTarget implements WavefrontPathTracingRende
         const staging = adaptive.encodeConvergence(encoder, tally);
         this.device.queue.submit([encoder.finish()]);
         outcome.submissions += 1;
-        // renderOnce cannot wait: the count lands when the GPU gets there and sizes a later frame.
-        if (wait) await adaptive.read(staging);
-        else void adaptive.read(staging).catch(() => undefined);
+        const counted = adaptive.read(staging);
+        if (wait) {
+          if (pendingCount) await pendingCount;
+          pendingCount = counted;
+        } else {
+          // renderOnce cannot wait: the count lands when the GPU gets there and sizes a later frame.
+          void counted.catch(() => undefined);
+        }
       } else if (wait && more && frame.budgetMs !== null) {
         await this.device.queue.onSubmittedWorkDone();
       }
@@ -397,6 +406,7 @@ class WavefrontRenderer extends EventTarget implements WavefrontPathTracingRende
       if (frame.budgetMs !== null && outcome.samplesAdded >= frame.minimum && elapsedMs + perPassMs > frame.budgetMs) break;
       this.emitProgress(this.progressOf(frame, outcome, elapsedMs, false), frame.onProgress);
     }
+    if (pendingCount) await pendingCount;
     this.encoderOfWaves.tally = null;
     this.samplesAccumulated += outcome.samplesAdded;
     this.pixelSamplesAccumulated += outcome.pixelSamples;
@@ -485,6 +495,10 @@ class WavefrontRenderer extends EventTarget implements WavefrontPathTracingRende
     }
     const wallTimeMs = performance.now() - started;
     const pixels = this.config.width * this.config.height;
+    // The camera-ray counter is exact where the CPU's step accounting used a stale list length.
+    const cameraRays = result.counters[queueCounterSlots.cameraRays]!;
+    this.pixelSamplesAccumulated += cameraRays - outcome.pixelSamples;
+    outcome.pixelSamples = cameraRays;
     const settings = this.config.output.adaptive;
     const counts = this.adaptive?.counts;
     const stats = frameStatsFromCounters(result.counters, {
