@@ -170,6 +170,13 @@ if (options.pathTracer && existsSync(new URL('./pathtracer.ts', import.meta.url)
   };
 }
 
+if (process.env.BENCH_OUTPUT === '1') {
+  // Production-output measurements (adaptive sampling at equal time, denoising): bench/output.ts.
+  const { runOutputBenchmark } = await import('./output.ts');
+  console.log('\nProduction output (BENCH_OUTPUT=1)');
+  results.output = await runOutputBenchmark();
+}
+
 results.totalSeconds = (performance.now() - began) / 1000;
 const outDir = new URL('./results/', import.meta.url);
 await mkdir(outDir, { recursive: true });

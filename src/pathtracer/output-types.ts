@@ -8,7 +8,7 @@ import type { TransportExperimentName, WavefrontFeatureFlagState, WavefrontTrans
 export interface WavefrontDenoiseOptions {
   /** A-trous passes, taps 1, 2, 4, ... pixels apart; 1..8, default 5 (a 125-pixel footprint). */
   iterations?: number;
-  /** Luminance edge-stopping in standard deviations of the pixel noise (SVGF sigma_l); > 0, default 4. */
+  /** Luminance edge-stopping in standard deviations of the pixel noise (SVGF sigma_l); > 0, default 2. */
   sigmaLuminance?: number;
   /** Normal edge-stopping exponent (SVGF sigma_n); >= 0, default 128. */
   sigmaNormal?: number;

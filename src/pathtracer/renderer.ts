@@ -351,66 +351,79 @@ class WavefrontRenderer extends EventTarget implements WavefrontPathTracingRende
     this.dispatchEvent(new CustomEvent('progress', { detail: progress }));
   }
 
-  /**
-   * Renders a frame's sample passes. Without adaptive sampling or a budget: one group of tile waves.
-   * With adaptive sampling: steps of adaptiveStepSamples passes over the active list, each followed
-   * by the convergence test, whose list length (one small readback per step when `wait`) sizes the
-   * next step. With a budget: the guaranteed passes, then one pass at a time while the measured
-   * pass time fits (waiting for the GPU between passes).
-   */
-  private async renderPasses(frame: ParsedFrameOptions, wait: boolean, started: number): Promise<FrameOutcome> {
-    const { width, height, tileSize } = this.config;
-    const pixels = width * height;
+  /** Starts a frame: zeroed counters, a fresh dispatch tally, the denoised copy out of date. */
+  private beginFrame(): FrameOutcome {
     const tally = new DispatchTally();
     this.encoderOfWaves.tally = tally;
     this.device.queue.writeBuffer(this.resources.counters, 0, new Uint32Array(queueCounterCount));
     this.denoisedFresh = false;
-    const outcome: FrameOutcome = { samplesAdded: 0, waves: 0, submissions: 0, tally, pixelSamples: 0 };
+    return { samplesAdded: 0, waves: 0, submissions: 0, tally, pixelSamples: 0 };
+  }
+
+  /**
+   * Submits `step` sample passes: tile waves over the image, or list waves over the pixels adaptive
+   * sampling last counted as active, then (adaptive) the convergence test, whose list length comes
+   * back through the returned promise.
+   */
+  private submitStep(outcome: FrameOutcome, step: number): Promise<unknown> | null {
+    const { width, height, tileSize } = this.config;
     const adaptive = this.adaptive;
-    // The list length of the step before: each step is sized by the count of the one before the
-    // previous, so the GPU always has the next step queued while the CPU waits for a count (the
-    // waves bound themselves by the GPU's own count; a pixel the stale count leaves out waits a step).
+    const active = adaptive ? adaptive.counts.activePixels : width * height;
+    const waves = adaptive ? planListWaves(active, this.capacity, step) : planWaves(width, height, tileSize, this.samplesAccumulated + outcome.samplesAdded, step);
+    outcome.submissions += this.submitWaves(waves, outcome.samplesAdded === 0);
+    outcome.waves += waves.length;
+    outcome.samplesAdded += step;
+    outcome.pixelSamples += step * active;
+    if (!adaptive) return null;
+    const encoder = this.device.createCommandEncoder({ label: 'adaptive sampling' });
+    const staging = adaptive.encodeConvergence(encoder, outcome.tally);
+    this.device.queue.submit([encoder.finish()]);
+    outcome.submissions += 1;
+    return adaptive.read(staging);
+  }
+
+  private endFrame(outcome: FrameOutcome): void {
+    this.encoderOfWaves.tally = null;
+    this.samplesAccumulated += outcome.samplesAdded;
+    this.pixelSamplesAccumulated += outcome.pixelSamples;
+    this.frameCount += 1;
+  }
+
+  /**
+   * Renders a frame's sample passes and waits for them. Without adaptive sampling or a budget: one
+   * group of tile waves. With adaptive sampling: steps of adaptiveStepSamples passes over the active
+   * list, each followed by the convergence test; each step is sized by the list length of the step
+   * before the previous one, so the GPU always has the next step queued while the CPU waits for a
+   * count (the waves bound themselves by the GPU's own count; a pixel a stale count leaves out waits
+   * a step). With a budget: the guaranteed passes, then one pass at a time while the measured pass
+   * time fits (waiting for the GPU between passes).
+   */
+  private async renderPasses(frame: ParsedFrameOptions, started: number): Promise<FrameOutcome> {
+    const outcome = this.beginFrame();
+    const adaptive = this.adaptive;
     let pendingCount: Promise<unknown> | null = null;
     while (outcome.samplesAdded < frame.ceiling) {
       if (adaptive && adaptive.counts.activePixels === 0) break;
       const rendered = outcome.samplesAdded;
       let step = frame.ceiling - rendered;
       if (frame.budgetMs !== null) step = rendered < frame.minimum ? frame.minimum - rendered : 1;
-      if (adaptive && wait) step = Math.min(step, adaptiveStepSamples);
-      const active = adaptive ? adaptive.counts.activePixels : pixels;
-      const waves = adaptive ? planListWaves(active, this.capacity, step) : planWaves(width, height, tileSize, this.samplesAccumulated + rendered, step);
-      outcome.submissions += this.submitWaves(waves, rendered === 0);
-      outcome.waves += waves.length;
-      outcome.samplesAdded += step;
-      outcome.pixelSamples += step * active;
+      if (adaptive) step = Math.min(step, adaptiveStepSamples);
+      const counted = this.submitStep(outcome, step);
       const more = outcome.samplesAdded < frame.ceiling;
-      if (adaptive) {
-        const encoder = this.device.createCommandEncoder({ label: 'adaptive sampling' });
-        const staging = adaptive.encodeConvergence(encoder, tally);
-        this.device.queue.submit([encoder.finish()]);
-        outcome.submissions += 1;
-        const counted = adaptive.read(staging);
-        if (wait) {
-          if (pendingCount) await pendingCount;
-          pendingCount = counted;
-        } else {
-          // renderOnce cannot wait: the count lands when the GPU gets there and sizes a later frame.
-          void counted.catch(() => undefined);
-        }
-      } else if (wait && more && frame.budgetMs !== null) {
+      if (counted) {
+        if (pendingCount) await pendingCount;
+        pendingCount = counted;
+      } else if (more && frame.budgetMs !== null) {
         await this.device.queue.onSubmittedWorkDone();
       }
-      if (!wait || !more) continue;
+      if (!more) break;
       const elapsedMs = performance.now() - started;
       const perPassMs = elapsedMs / outcome.samplesAdded;
       if (frame.budgetMs !== null && outcome.samplesAdded >= frame.minimum && elapsedMs + perPassMs > frame.budgetMs) break;
       this.emitProgress(this.progressOf(frame, outcome, elapsedMs, false), frame.onProgress);
     }
     if (pendingCount) await pendingCount;
-    this.encoderOfWaves.tally = null;
-    this.samplesAccumulated += outcome.samplesAdded;
-    this.pixelSamplesAccumulated += outcome.pixelSamples;
-    this.frameCount += 1;
+    this.endFrame(outcome);
     return outcome;
   }
 
@@ -484,7 +497,7 @@ class WavefrontRenderer extends EventTarget implements WavefrontPathTracingRende
     let result: { counters: Uint32Array; gpuTimeMs: number | null };
     let denoised: boolean;
     try {
-      outcome = await this.renderPasses(frame, true, started);
+      outcome = await this.renderPasses(frame, started);
       const end = this.finishFrame(outcome.tally, true);
       denoised = end.denoised;
       outcome.submissions += 1;
@@ -538,8 +551,12 @@ class WavefrontRenderer extends EventTarget implements WavefrontPathTracingRende
     this.assertUsable();
     const frame = parseRenderFrameOptions(options, this.config.samplesPerPixel);
     if (frame.budgetMs !== null) throw new GpuRendererError('INVALID_OPTION', 'a frame time budget needs renderFrame, which waits for the GPU', { field: 'frameTimeBudgetMs' });
-    // Without waiting, the passes are encoded at once (renderPasses resolves before any await).
-    void this.renderPasses(frame, false, performance.now()).then((outcome) => this.finishFrame(outcome.tally, false));
+    const outcome = this.beginFrame();
+    // One step of all the passes; adaptive sampling's count lands when the GPU gets there and sizes
+    // a later frame (nothing here waits for it).
+    if (!(this.adaptive && this.adaptive.counts.activePixels === 0)) void this.submitStep(outcome, frame.ceiling)?.catch(() => undefined);
+    this.endFrame(outcome);
+    this.finishFrame(outcome.tally, false);
   }
 
   updateCamera(camera: WavefrontCameraInput): void {

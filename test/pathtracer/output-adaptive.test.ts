@@ -188,6 +188,21 @@ test('frame budgets: samplesPerPixel is a ceiling, the minimum is guaranteed, re
   }
 });
 
+test('renderOnce submits without waiting, also with adaptive sampling; the next renderFrame sees every sample', async () => {
+  const renderer = await cornellRenderer(16, { seed: 3, adaptiveThreshold: 0.01, minimumSamplesPerPixel: 16 });
+  try {
+    renderer.renderOnce({ samplesPerPixel: 4 });
+    renderer.renderOnce({ samplesPerPixel: 3 });
+    const stats = await renderer.renderFrame({ samplesPerPixel: 2 });
+    assert.equal(stats.samplesAccumulated, 9);
+    const counts = (await renderer.readAov('sampleCount')).data;
+    for (let p = 0; p < 256; p++) assert.equal(counts[4 * p], 9, 'no pixel may converge below the minimum of 16');
+    assert.equal(renderer.getSnapshot().adaptive!.meanSamplesPerPixel, 9);
+  } finally {
+    renderer.destroy();
+  }
+});
+
 test('bad adaptive and budget options are typed errors naming the field', async () => {
   const device = await testDevice();
   const base = { device, width: 4, height: 4 };

@@ -8,12 +8,13 @@ import { denoiseAtrousReference } from '../../src/post/denoise/atrous-reference.
 import { displayPeakSignalToNoiseRatio } from '../../src/post/metrics/display.ts';
 import { defaultDenoiseValidationThresholds, validateWavefrontDenoise } from '../../src/post/wavefront-denoise-validation.ts';
 import { createWavefrontPathTracingComputeRenderer } from '../../src/pathtracer/index.ts';
+import { defaultDenoiseSettings } from '../../src/pathtracer/output-options.ts';
 import type { WavefrontPathTracingRenderer } from '../../src/pathtracer/types.ts';
 import { GpuRendererError } from '../../src/errors/gpu-renderer-error.ts';
 import { testDevice } from '../helpers/gpu.ts';
 import { cornellRenderer, lambert, meanChannel, rect, squareCamera } from './output-helpers.ts';
 
-const settings = { iterations: 5, sigmaLuminance: 4, sigmaNormal: 128, sigmaDepth: 1 };
+const settings = defaultDenoiseSettings;
 
 async function inputs(renderer: WavefrontPathTracingRenderer) {
   const variance = (await renderer.readAov('variance')).data;
