@@ -10,8 +10,9 @@
  *   seen directly or through specular chains; Cycles' Emission pass);
  * - objectId, materialId: the object (instance id) and material (index) of the pixel's first sample
  *   that reached a non-specular surface, -1 where none did;
- * - variance: the variance of the pixel's mean radiance per channel (sample variance / n), and of
- *   the mean luminance of the radiance without the emission (what the denoiser filters);
+ * - variance: the variance of the pixel's mean radiance per channel (sample variance / n, the
+ *   independent-samples estimate; stratified samples usually do better), and of the mean luminance
+ *   of the radiance without the emission (what the denoiser filters);
  * - sampleCount: the samples the pixel received (adaptive sampling gives pixels different counts).
  */
 export type WavefrontAovName = 'albedo' | 'normal' | 'depth' | 'emission' | 'objectId' | 'materialId' | 'variance' | 'sampleCount';

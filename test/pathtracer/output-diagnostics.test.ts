@@ -2,14 +2,21 @@
 // environment-only view equals the known radiance; every path ends in exactly one termination
 // counter; legacy-clamp-equivalent samples; dispatch counts and guardrails follow the wave plan and
 // the submission bound (which does not change the image); feature flags; linear presentation and
-// exposure in EV.
+// exposure in EV; invalid contributions dropped and counted per contribution and per sample.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { createWavefrontPathTracingComputeRenderer } from '../../src/pathtracer/index.ts';
 import { transportExperimentNames } from '../../src/pathtracer/feature-flags.ts';
 import { encodeRadianceToRgba8 } from '../../src/post/tone-mapping.ts';
 import { GpuRendererError } from '../../src/errors/gpu-renderer-error.ts';
-import { testDevice } from '../helpers/gpu.ts';
+import { pathTracerBindings } from '../../src/gpu-layout/bindings.ts';
+import { INDEX_NONE, LUMINANCE_FRACTION_BITS, queueCounterCount, queueCounterSlots } from '../../src/gpu-layout/constants.ts';
+import { pathStateLayout, sampleRecordLayout, waveUniformsLayout } from '../../src/gpu-layout/records.ts';
+import { allocateStructArray, writeStruct } from '../../src/gpu-layout/struct-layout.ts';
+import { BufferUsage } from '../../src/gpu/webgpu-constants.ts';
+import { generatedPrograms } from '../../src/shaders/programs.generated.ts';
+import { readBuffer, testDevice, uploadBuffer } from '../helpers/gpu.ts';
+import { runTestProgram } from '../helpers/wgsl.ts';
 import { cornellRenderer, luminance, rect, squareCamera } from './output-helpers.ts';
 
 const emitter = (radiance: [number, number, number]) => ({ baseColorFactor: [0, 0, 0, 1] as [number, number, number, number], emissiveFactor: radiance, emissiveStrength: 1 });
@@ -169,4 +176,66 @@ test('presentation: linear output shows exposed linear radiance, tone mapped out
   for (const [options, field] of [[{ presentationOutput: 'srgb' }, 'presentationOutput'], [{ exposureEv: Number.POSITIVE_INFINITY }, 'exposureEv']] as const) {
     await assert.rejects(createWavefrontPathTracingComputeRenderer({ ...scene, ...options } as never), (e: unknown) => e instanceof GpuRendererError && e.field === field);
   }
+});
+
+test('invalid contributions are dropped and counted, and each sample that lost one counts once (commit + accumulate kernels)', async () => {
+  const device = await testDevice();
+  const slots = 8;
+  // Per slot, the contributions committed in order (NaN, Inf and negative values are invalid).
+  const schedule: [number, number, number][][] = [
+    [[1, 2, 3]],
+    [[Number.NaN, 0, 0]],
+    [[Infinity, 1, 1]],
+    [[-1, 0, 0]],
+    [[Number.NaN, 1, 1], [0.5, 0.5, 0.5], [1, -Infinity, 1]],
+    [], [], [[6, 0, 0]],
+  ];
+  const flat = schedule.flatMap((list, slot) => list.map((v) => [...v, slot]));
+  const inputs = uploadBuffer(device, new Float32Array(flat.flat()));
+  const samples = uploadBuffer(device, new ArrayBuffer(slots * sampleRecordLayout.size));
+  const counters = uploadBuffer(device, new Uint32Array(queueCounterCount));
+  await runTestProgram(device, {
+    source: `import package::pathtracer::radiance::commit_radiance;
+@group(0) @binding(0) var<storage, read> inputs: array<vec4f>;
+@compute @workgroup_size(1) fn main() {
+  for (var i = 0u; i < arrayLength(&inputs); i++) { commit_radiance(u32(inputs[i].w), inputs[i].xyz); }
+}`,
+    resources: { inputs, samples, counters },
+    workgroups: 1,
+  });
+  // The shipped accumulation kernel over one 8-path tile wave (path i at pixel i, sample 0).
+  const paths = allocateStructArray(pathStateLayout, slots);
+  for (let i = 0; i < slots; i++) writeStruct(pathStateLayout, new DataView(paths), i, { pixel: i, sampleIndex: 0 });
+  const wave = new ArrayBuffer(waveUniformsLayout.size);
+  writeStruct(waveUniformsLayout, new DataView(wave), 0, { tileSize: [slots, 1], activeOffset: INDEX_NONE });
+  const film = uploadBuffer(device, new Float32Array(slots * 4));
+  const resources: Record<string, GPUBuffer> = {
+    paths: uploadBuffer(device, paths), samples, counters, film,
+    filmAovs: uploadBuffer(device, new Float32Array(slots * 12)), filmMoments: uploadBuffer(device, new Float32Array(slots * 8)),
+    filmIds: uploadBuffer(device, new Uint32Array(slots)), adaptivePixels: uploadBuffer(device, new Uint32Array(8)),
+    wave: uploadBuffer(device, wave, BufferUsage.UNIFORM),
+  };
+  const program = generatedPrograms.accumulate;
+  const module = device.createShaderModule({ code: program.wgsl });
+  const pipeline = await device.createComputePipelineAsync({ layout: 'auto', compute: { module, entryPoint: 'accumulate_samples' } });
+  const encoder = device.createCommandEncoder();
+  const pass = encoder.beginComputePass();
+  pass.setPipeline(pipeline);
+  pass.setBindGroup(3, device.createBindGroup({
+    layout: pipeline.getBindGroupLayout(3),
+    entries: program.bindings.map((name) => ({ binding: pathTracerBindings[name as keyof typeof pathTracerBindings].binding, resource: { buffer: resources[name]! } })),
+  }));
+  pass.dispatchWorkgroups(1);
+  pass.end();
+  device.queue.submit([encoder.finish()]);
+  const c = new Uint32Array(await readBuffer(device, counters));
+  const f = new Float32Array(await readBuffer(device, film));
+  assert.equal(c[queueCounterSlots.invalidSamples], 5, 'contributions dropped');
+  assert.equal(c[queueCounterSlots.invalidPathSamples], 4, 'samples that lost a contribution');
+  assert.equal(c[queueCounterSlots.clampEquivalentSamples], 1, 'the sample of radiance 6');
+  const expected = [[1, 2, 3], [0, 0, 0], [0, 0, 0], [0, 0, 0], [0.5, 0.5, 0.5], [0, 0, 0], [0, 0, 0], [6, 0, 0]];
+  expected.forEach((rgb, p) => assert.deepEqual([...f.subarray(4 * p, 4 * p + 4)], [...rgb, 1], `pixel ${p}: valid contributions kept, every sample counted`));
+  const total = expected.reduce((sum, [r, g, b]) => sum + luminance(r!, g!, b!), 0);
+  const fixed = (c[queueCounterSlots.totalLuminanceLo]! + c[queueCounterSlots.totalLuminanceHi]! * 2 ** 32) / 2 ** LUMINANCE_FRACTION_BITS;
+  assert.ok(Math.abs(fixed - total) <= 1 / 2 ** LUMINANCE_FRACTION_BITS, `${fixed} vs ${total}`);
 });
