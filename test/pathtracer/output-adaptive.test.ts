@@ -6,6 +6,7 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { adaptiveConvergedMask, adaptiveSamplingError } from '../../src/post/adaptive-sampling/converged-mask.ts';
+import { createWavefrontAdaptiveSamplingLevels } from '../../src/post/adaptive-sampling/sampling-levels.ts';
 import { createWavefrontPathTracingComputeRenderer } from '../../src/pathtracer/index.ts';
 import type { WavefrontRenderProgress } from '../../src/pathtracer/types.ts';
 import { GpuRendererError } from '../../src/errors/gpu-renderer-error.ts';
@@ -183,6 +184,12 @@ test('frame budgets: samplesPerPixel is a ceiling, the minimum is guaranteed, re
     assert.ok(partial.length >= 3, `${partial.length} intermediate events`);
     assert.ok(partial.every((e) => e.samplesThisFrame < e.targetSamplesThisFrame));
     assert.throws(() => renderer.renderOnce({ frameTimeBudgetMs: 5 }), (e: unknown) => e instanceof GpuRendererError && e.field === 'frameTimeBudgetMs');
+    // The governor ladder's configs are renderFrame options as they are.
+    for (const level of createWavefrontAdaptiveSamplingLevels({ maxSamplesPerPixel: 8, minimumSamplesPerPixel: 2, levels: 3, targetFrameTimeMs: 50 })) {
+      const s = await renderer.renderFrame(level.config);
+      assert.equal(s.samplesPerPixel, level.config.samplesPerPixel);
+      assert.ok(s.renderedSamplesPerPixel >= level.config.minimumSamplesPerPixel && s.renderedSamplesPerPixel <= level.config.samplesPerPixel);
+    }
   } finally {
     renderer.destroy();
   }
