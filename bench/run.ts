@@ -44,7 +44,7 @@ let options: BenchOptions;
 try {
   options = parseBenchOptions(process.argv.slice(2), process.env, await readBaselineFile());
 } catch (error) {
-  console.error(`bench: ${(error as Error).message}\nusage: npm run bench -- [--baseline <ref> | --no-baseline] [--rounds <n>] [--no-bvh | --bvh-only] [--no-gltf | --gltf-only] [--no-raster | --raster-only]`);
+  console.error(`bench: ${(error as Error).message}\nusage: npm run bench -- [--baseline <ref> | --no-baseline] [--rounds <n>] [--no-bvh | --bvh-only] [--no-gltf | --gltf-only] [--no-raster | --raster-only] [--output | --output-only]`);
   process.exit(2);
 }
 
@@ -196,6 +196,14 @@ if (options.raster) {
   results.raster = raster;
   console.log(`  adapter: ${raster.adapter}`);
   console.table(raster.rows.map((r) => ({ characters: r.characters, size: `${r.width}x${r.height}`, 'frame ms': r.medianFrameMs.toFixed(1), 'skinned vertices/s': Math.round(r.skinnedVerticesPerSecond) })));
+}
+
+// Production output (bench/output.ts: adaptive sampling at equal time, denoising): opt in with
+// --output / BENCH_OUTPUT=1 or --output-only; it renders converged references and takes minutes.
+if (options.output) {
+  const { runOutputBenchmark } = await import('./output.ts');
+  console.log('\nProduction output: adaptive sampling at equal time, denoising');
+  results.output = await runOutputBenchmark();
 }
 
 results.totalSeconds = (performance.now() - began) / 1000;

@@ -2,6 +2,7 @@ import { fail, requireInteger, requireNumberInRange, requireVec } from '../error
 import { maxRadiance } from '../scene/limits.ts';
 import type { WavefrontToneMapping } from '../scene/types.ts';
 import { normalizeWavefrontCamera, type WavefrontCamera } from './camera.ts';
+import { outputOptionNames, parseOutputOptions, type WavefrontOutputConfig } from './output-options.ts';
 import type { WavefrontPathTracingOptions } from './types.ts';
 
 export const maxWavefrontDepth = 32;
@@ -20,8 +21,10 @@ export interface WavefrontPathTracingComputeConfig {
   environment: [number, number, number];
   toneMapping: WavefrontToneMapping;
   exposure: number;
-  /** Accumulate albedo, normal and depth AOVs of the first non-specular hit. */
+  /** Accumulate albedo, normal, depth, id and variance AOVs of the first non-specular hit. */
   aovs: boolean;
+  /** Adaptive sampling, denoiser, presentation, submission bounds and feature flags (output-options.ts). */
+  output: WavefrontOutputConfig;
 }
 
 const toneMappings: readonly WavefrontToneMapping[] = ['neutral', 'aces', 'linear', 'agx'];
@@ -30,6 +33,7 @@ const toneMappings: readonly WavefrontToneMapping[] = ['neutral', 'aces', 'linea
 export const wavefrontOptionNames: ReadonlySet<string> = new Set<keyof WavefrontPathTracingOptions>([
   'width', 'height', 'maxDepth', 'samplesPerPixel', 'tileSize', 'seed', 'camera', 'meshes', 'instances', 'materials', 'textures',
   'images', 'sceneObjects', 'lights', 'environment', 'toneMapping', 'exposure', 'aovs', 'shaderSpecialization', 'canvas', 'device', 'powerPreference',
+  ...outputOptionNames,
 ]);
 
 /** Validates the non-geometry options; every error names its field. */
@@ -60,5 +64,6 @@ export function createWavefrontPathTracingComputeConfig(options: Partial<Wavefro
   if (!toneMappings.includes(toneMapping)) fail('INVALID_OPTION', 'toneMapping', `expected one of ${toneMappings.join(', ')}`);
   const exposure = options.exposure === undefined ? 1 : requireNumberInRange(options.exposure, 'exposure', { min: 0 });
   if (options.aovs !== undefined && typeof options.aovs !== 'boolean') fail('INVALID_OPTION', 'aovs', 'expected a boolean');
-  return { width, height, maxDepth, samplesPerPixel, tileSize, seed, camera, environment, toneMapping, exposure, aovs: options.aovs ?? false };
+  const output = parseOutputOptions(options);
+  return { width, height, maxDepth, samplesPerPixel, tileSize, seed, camera, environment, toneMapping, exposure, aovs: options.aovs ?? false, output };
 }

@@ -82,3 +82,12 @@ test('raster knobs: on by default, --no-raster / BENCH_RASTER=0 skip it, --raste
   assert.throws(() => parseBenchOptions(['--raster-only', '--no-raster'], {}, file), /exclude/);
   assert.throws(() => parseBenchOptions(['--raster-only', '--gltf-only'], {}, file), /exclude/);
 });
+
+test('output benchmark: opt-in with --output / BENCH_OUTPUT=1, alone with --output-only', () => {
+  assert.equal(parseBenchOptions([], {}, file).output, false);
+  assert.equal(parseBenchOptions(['--output'], {}, file).output, true);
+  assert.equal(parseBenchOptions([], { BENCH_OUTPUT: '1' }, file).output, true);
+  assert.equal(parseBenchOptions([], { BENCH_OUTPUT: '0' }, file).output, false);
+  const alone = parseBenchOptions(['--output-only'], {}, file);
+  assert.deepEqual([alone.output, alone.bvh, alone.gltf, alone.raster, alone.pathTracer], [true, false, false, false, false]);
+});
