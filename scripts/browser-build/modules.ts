@@ -5,7 +5,8 @@
 // - dynamic imports whose specifier is computed at run time (the Node-only paths: Dawn, node:fs,
 //   draco3dgltf, ...) get `webpackIgnore` / `@vite-ignore` comments, so bundlers neither warn
 //   about nor try to resolve them (webpack would otherwise make an empty context module).
-// A Node.js built-in imported by name fails the build: browser code must not name one.
+// A Node.js built-in imported by name fails the build (browser code must not name one), and so
+// does import.meta (assets found through it would not be copied).
 import { copyFileSync, existsSync, mkdirSync, readFileSync, writeFileSync } from 'node:fs';
 import { isBuiltin } from 'node:module';
 import { dirname, join, posix, relative, resolve, sep } from 'node:path';
@@ -54,7 +55,8 @@ export async function copyBrowserModules(esmDir: string, outDir: string): Promis
     const [imports] = parse(source, path);
     const edits: Edit[] = [];
     for (const record of imports) {
-      if (record.d === -2) continue; // import.meta
+      // `new URL('./asset', import.meta.url)` would name a file this copy does not carry.
+      if (record.d === -2) throw new Error(`${path}: uses import.meta, which the browser build does not support (it copies modules only)`);
       const dynamic = record.d >= 0;
       const specifier = record.n;
       if (specifier === undefined) {
