@@ -1,17 +1,18 @@
 // The README's browser quick start (test/bundle/quick-start: index.html + main.js, the same text)
-// in a Vite project that installed the package: Vite serves it from the package's exports
-// (dist/esm) with no configuration, and Chromium shows the Cornell box converging on the canvas.
+// in a Vite project that installed the package: Vite serves it from the package's exports (the
+// "browser" condition: dist/browser) with no configuration, and Chromium shows the Cornell box
+// converging on the canvas.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { cpSync } from 'node:fs';
-import { join } from 'node:path';
+import { cpSync, readFileSync, realpathSync } from 'node:fs';
+import { join, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { decode } from 'fast-png';
 import { chromiumPath, chromiumSkip, chromiumWebGpuArgs } from '../browser/browser-session.ts';
 import { createConsumerProject, repoRoot } from './bundle.ts';
 
 test('the README quick start runs unchanged in a Vite project', { skip: chromiumSkip, timeout: 180_000 }, async (t) => {
-  const project = createConsumerProject();
+  const project = await createConsumerProject();
   t.after(() => project.cleanup());
   const app = join(project.dir, 'quick-start');
   cpSync(fileURLToPath(new URL('./quick-start/', import.meta.url)), app, { recursive: true });
@@ -20,7 +21,7 @@ test('the README quick start runs unchanged in a Vite project', { skip: chromium
     configFile: false,
     root: app,
     logLevel: 'error',
-    server: { host: '127.0.0.1', port: 0, fs: { allow: [project.dir, repoRoot, project.builtDir] } },
+    server: { host: '127.0.0.1', port: 0, fs: { allow: [project.dir, repoRoot, project.builtDir, project.browserDir] } },
     cacheDir: join(project.dir, '.vite'),
   });
   await server.listen();
@@ -55,4 +56,8 @@ test('the README quick start runs unchanged in a Vite project', { skip: chromium
   assert.ok(left[0]! > 2 * left[1]! && left[0]! > 20, `left wall red: ${left.map(Math.round)}`);
   assert.ok(right[1]! > 1.5 * right[0]! && right[1]! > 20, `right wall green: ${right.map(Math.round)}`);
   assert.deepEqual(errors, []);
+  // Vite pre-bundled the package from its browser build (the "browser" export condition).
+  const metadata = JSON.parse(readFileSync(join(project.dir, '.vite/deps/_metadata.json'), 'utf8')) as { optimized: Record<string, { src: string }> };
+  const src = metadata.optimized['@plasius/gpu-renderer']?.src ?? '';
+  assert.ok(realpathSync(resolve(project.dir, '.vite/deps', src)).startsWith(project.browserDir), `Vite's entry: ${src}`);
 });

@@ -9,8 +9,19 @@ import type { VertexStreams } from './vertex-streams.ts';
 type GenerateTangents = (position: Float32Array, normal: Float32Array, texcoord: Float32Array) => Float32Array;
 let generator: Promise<GenerateTangents> | undefined;
 
+/**
+ * `mikktspace` as this module imports it. The npm package's builds are ready once imported; the
+ * package's browser build (dist/browser, scripts/browser-build) substitutes a module that runs the
+ * same WebAssembly from inlined bytes, which it compiles asynchronously in `ready()`.
+ */
+interface MikkTSpaceModule {
+  generateTangents: GenerateTangents;
+  ready?: () => Promise<void>;
+}
+
 async function loadGenerator(): Promise<GenerateTangents> {
-  const module = await import('mikktspace');
+  const module: MikkTSpaceModule = await import('mikktspace');
+  await module.ready?.();
   return module.generateTangents;
 }
 
