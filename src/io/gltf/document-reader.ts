@@ -147,13 +147,22 @@ async function loadResources(json: Record<string, unknown>, bufferByteLengths: n
   return { resources: resources as JSONDocument['resources'], buffers };
 }
 
+/**
+ * A gltf-transform Document, recognised by shape rather than `instanceof`: the browser build
+ * carries its own copy of @gltf-transform/core, so an application's Document comes from another
+ * class object.
+ */
+function isDocument(source: GltfSource): source is Document {
+  return typeof source === 'object' && source !== null && !(source instanceof URL) && !ArrayBuffer.isView(source) && !(source instanceof ArrayBuffer) && typeof (source as Document).getRoot === 'function';
+}
+
 export async function readGltfDocument(
   source: GltfSource,
   warnings: string[],
   options: { signal?: AbortSignal; decoders?: GltfDecoderModules } = {},
 ): Promise<ReadDocumentResult> {
   const { signal } = options;
-  if (source instanceof Document) return { document: source, json: undefined };
+  if (isDocument(source)) return { document: source, json: undefined };
   const { bytes, base } = await sourceBytes(source, signal);
   signal?.throwIfAborted();
   let rawJson: unknown;
