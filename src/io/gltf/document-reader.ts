@@ -4,7 +4,8 @@
  * @gltf-transform build the document with all Khronos extensions registered, plus the Draco and
  * meshopt decoders they need.
  */
-import { Document, GLB_BUFFER, WebIO, type ILogger, type JSONDocument } from '@gltf-transform/core';
+import type { Document} from '@gltf-transform/core';
+import { GLB_BUFFER, WebIO, type ILogger, type JSONDocument } from '@gltf-transform/core';
 import { ALL_EXTENSIONS } from '@gltf-transform/extensions';
 import { GpuRendererError } from '../../errors/gpu-renderer-error.ts';
 import { locateCompressionFault } from './compression-faults.ts';
