@@ -5,6 +5,12 @@
  *   --rounds <n>     | BENCH_ROUNDS         child processes per version, alternated (default 3)
  *   --no-bvh         | BENCH_BVH=0          skip the BVH build benchmark
  *   --bvh-only       | BENCH_ONLY=bvh       run the BVH build benchmark alone
+ *   --no-gltf        | BENCH_GLTF=0         skip the glTF benchmark (load + BVH, textures)
+ *   --gltf-only      | BENCH_ONLY=gltf      run the glTF benchmark alone
+ *   --no-raster      | BENCH_RASTER=0       skip the raster renderer benchmark
+ *   --raster-only    | BENCH_ONLY=raster    run the raster renderer benchmark alone
+ *   --output         | BENCH_OUTPUT=1       add the production-output benchmark (off by default: minutes)
+ *   --output-only    | BENCH_ONLY=output    run the production-output benchmark alone
  * The command line wins over the environment. BENCH_SPP is read by the path tracer harnesses.
  */
 import { parseArgs } from 'node:util';
@@ -20,7 +26,12 @@ export interface BenchOptions {
   /** Child processes per version; versions alternate (baseline, current, baseline, current, ...). */
   rounds: number;
   bvh: boolean;
-  /** Run the path tracer comparison (off with --bvh-only / BENCH_ONLY=bvh). */
+  /** Run the glTF benchmark (bench/gltf.ts). */
+  gltf: boolean;
+  raster: boolean;
+  /** The production-output benchmark: opt-in. */
+  output: boolean;
+  /** Run the path tracer comparison (off with --bvh-only / --gltf-only). */
   pathTracer: boolean;
 }
 
@@ -59,6 +70,13 @@ export function parseBenchOptions(
       rounds: { type: 'string' },
       'no-bvh': { type: 'boolean' },
       'bvh-only': { type: 'boolean' },
+      'no-gltf': { type: 'boolean' },
+      'gltf-only': { type: 'boolean' },
+      'no-raster': { type: 'boolean' },
+      'raster-only': { type: 'boolean' },
+      output: { type: 'boolean' },
+      'no-output': { type: 'boolean' },
+      'output-only': { type: 'boolean' },
     },
     strict: true,
     allowPositionals: false,
@@ -74,8 +92,21 @@ export function parseBenchOptions(
 
   const roundsText = values.rounds ?? env.BENCH_ROUNDS;
   const rounds = roundsText === undefined || roundsText === '' ? DEFAULT_ROUNDS : positiveInteger(roundsText, values.rounds !== undefined ? '--rounds' : 'BENCH_ROUNDS');
-  const bvhOnly = values['bvh-only'] === true || env.BENCH_ONLY?.toLowerCase() === 'bvh';
-  const bvh = bvhOnly || (!values['no-bvh'] && !(env.BENCH_BVH !== undefined && OFF.has(env.BENCH_BVH.toLowerCase())));
-  if (bvhOnly && values['no-bvh']) throw new Error('--bvh-only and --no-bvh exclude each other');
-  return { baseline, rounds, bvh, pathTracer: !bvhOnly };
+  // One part alone: --x-only on the command line, else BENCH_ONLY=x.
+  const parts = ['bvh', 'gltf', 'raster', 'output'] as const;
+  const flagged = parts.filter((p) => values[`${p}-only`] === true);
+  if (flagged.length > 1) throw new Error(`--${flagged[0]}-only and --${flagged[1]}-only exclude each other`);
+  const fromEnv = parts.find((p) => env.BENCH_ONLY?.toLowerCase() === p);
+  const only = flagged[0] ?? fromEnv ?? null;
+  for (const p of parts) {
+    if (only === p && values[`no-${p}`]) throw new Error(`--${p}-only and --no-${p} exclude each other`);
+  }
+  const off = (name: string | undefined): boolean => name !== undefined && OFF.has(name.toLowerCase());
+  const on = (p: (typeof parts)[number], variable: string | undefined): boolean => only === p || (only === null && !values[`no-${p}`] && !off(variable));
+  const bvh = on('bvh', env.BENCH_BVH);
+  const gltf = on('gltf', env.BENCH_GLTF);
+  const raster = on('raster', env.BENCH_RASTER);
+  const outputOn = !values['no-output'] && (values.output === true || (env.BENCH_OUTPUT !== undefined && !off(env.BENCH_OUTPUT)));
+  const output = only === 'output' || (only === null && outputOn);
+  return { baseline, rounds, bvh, gltf, raster, output, pathTracer: only === null };
 }

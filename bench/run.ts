@@ -1,7 +1,8 @@
 /**
- * `npm run bench [-- options]`: the BVH build benchmark, then the path tracer benchmark of this
- * version beside a baseline git ref (bench/baseline.json), each in its own child processes,
- * alternated round by round. Prints tables and writes every result to bench/results/bench.json.
+ * `npm run bench [-- options]`: the BVH build benchmark, the glTF benchmark (load + BVH of a 1M-
+ * triangle .glb, samples/s with and without textures; a child process), then the path tracer
+ * benchmark of this version beside a baseline git ref (bench/baseline.json), each in its own child
+ * processes, alternated round by round. Prints tables and writes every result to bench/results/bench.json.
  * Figures, not pass/fail: a missing or broken baseline only narrows the run to this version.
  * Options and environment knobs: bench/bench-options.ts and bench/README.md.
  */
@@ -18,6 +19,9 @@ import { runPathTracerComparison } from './pathtracer-compare.ts';
 import type { PathTracerVersion } from './pathtracer-compare.ts';
 import type { SceneComparison, Spread, VersionSceneSummary } from './pathtracer-summary.ts';
 import { runBvhBenchmark } from './bvh.ts';
+import { runNodeChild } from './child-protocol.ts';
+import { printGltfResult, type GltfBenchResult } from './gltf.ts';
+import { runRasterBenchmark } from './raster.ts';
 import { isCpuAdapter } from './cpu-clock.ts';
 
 const repoRoot = fileURLToPath(new URL('..', import.meta.url)).replace(/\/$/, '');
@@ -40,7 +44,7 @@ let options: BenchOptions;
 try {
   options = parseBenchOptions(process.argv.slice(2), process.env, await readBaselineFile());
 } catch (error) {
-  console.error(`bench: ${(error as Error).message}\nusage: npm run bench -- [--baseline <ref> | --no-baseline] [--rounds <n>] [--no-bvh]`);
+  console.error(`bench: ${(error as Error).message}\nusage: npm run bench -- [--baseline <ref> | --no-baseline] [--rounds <n>] [--no-bvh | --bvh-only] [--no-gltf | --gltf-only] [--no-raster | --raster-only] [--output | --output-only]`);
   process.exit(2);
 }
 
@@ -71,6 +75,21 @@ if (options.bvh) {
   console.log(`load average (1 min) before ${bvh.loadAverage.before.toFixed(2)}, after ${bvh.loadAverage.after.toFixed(2)}; parallel cold start ${bvh.parallelColdStartMs.toFixed(0)} ms`);
 } else {
   console.log('BVH build benchmark skipped (--no-bvh / BENCH_BVH=0)');
+}
+
+if (options.gltf) {
+  console.log('\nglTF: load + BVH of a generated 1M-triangle .glb, samples/s with and without textures (bench/gltf.ts, child process)');
+  const outcome = await runNodeChild([fileURLToPath(new URL('./gltf-child.ts', import.meta.url))], repoRoot, Number(process.env.BENCH_CHILD_TIMEOUT_S ?? 1800) * 1000);
+  if (outcome.ok) {
+    results.gltf = outcome.value;
+    printGltfResult(outcome.value as GltfBenchResult);
+  } else {
+    results.gltf = { error: outcome.error };
+    console.log(`  glTF benchmark FAILED: ${outcome.error}`);
+    process.exitCode = 1;
+  }
+} else {
+  console.log('glTF benchmark skipped (--no-gltf / BENCH_GLTF=0, or another --x-only)');
 }
 
 const fixed = (v: number, digits = 3): string => v.toFixed(digits);
@@ -168,6 +187,23 @@ if (options.pathTracer && existsSync(new URL('./pathtracer.ts', import.meta.url)
     current: { name: currentName, head, uncommittedChanges: dirty },
     ...comparison,
   };
+}
+
+// Raster renderer (bench/raster.ts): off with --no-raster / BENCH_RASTER=0 or another --x-only.
+if (options.raster) {
+  console.log('\nRaster renderer: 4x MSAA, shadow map, prefiltered environment; GPU-skinned characters');
+  const raster = await runRasterBenchmark();
+  results.raster = raster;
+  console.log(`  adapter: ${raster.adapter}`);
+  console.table(raster.rows.map((r) => ({ characters: r.characters, size: `${r.width}x${r.height}`, 'frame ms': r.medianFrameMs.toFixed(1), 'skinned vertices/s': Math.round(r.skinnedVerticesPerSecond) })));
+}
+
+// Production output (bench/output.ts: adaptive sampling at equal time, denoising): opt in with
+// --output / BENCH_OUTPUT=1 or --output-only; it renders converged references and takes minutes.
+if (options.output) {
+  const { runOutputBenchmark } = await import('./output.ts');
+  console.log('\nProduction output: adaptive sampling at equal time, denoising');
+  results.output = await runOutputBenchmark();
 }
 
 results.totalSeconds = (performance.now() - began) / 1000;

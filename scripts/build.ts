@@ -1,10 +1,12 @@
 // Builds the package: dist/esm (ES modules + .d.ts) and dist/cjs (CommonJS + .d.ts) with
-// TypeScript 7, then makes the CLI executable. Run through `npm run build` (which regenerates the
+// TypeScript 7, makes the CLI executable, then derives dist/browser from dist/esm (the "browser"
+// export condition: see scripts/browser-build). Run through `npm run build` (which regenerates the
 // embedded WGSL first).
 import { spawnSync } from 'node:child_process';
 import { chmodSync, existsSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
+import { buildBrowserDist } from './browser-build/index.ts';
 
 const root = fileURLToPath(new URL('..', import.meta.url));
 const dist = join(root, 'dist');
@@ -38,4 +40,9 @@ const text = readFileSync(cli, 'utf8');
 if (!text.startsWith(shebang)) writeFileSync(cli, `${shebang}\n${text}`);
 chmodSync(cli, 0o755);
 
-console.log('build: dist/esm, dist/cjs, dist/esm/cli/main.js (executable)');
+const started = performance.now();
+const browser = await buildBrowserDist({ root, esmDir: join(dist, 'esm'), outDir: join(dist, 'browser') });
+const vendored = Object.entries(browser.vendor.files).map(([file, bytes]) => `${file} ${(bytes / 1024).toFixed(0)} KiB`);
+console.log(`build: dist/browser: ${browser.modules.modules.length} modules of dist/esm, ${vendored.join(', ')} (${((performance.now() - started) / 1000).toFixed(1)}s)`);
+
+console.log('build: dist/esm, dist/cjs, dist/esm/cli/main.js (executable), dist/browser');

@@ -9,6 +9,7 @@ import { displayBindings } from '../src/shaders/display-bindings.ts';
 import { programSpecs } from '../src/shaders/programs.ts';
 import { reflectProgram } from './shader-build/reflect.ts';
 import { linkProgram, weslProjectSources } from './shader-build/wesl-project.ts';
+import { generateRasterPrograms } from './shader-build/raster-programs.ts';
 
 const tables: Record<string, Record<string, BindingSpec>> = { pathTracer: pathTracerBindings, display: displayBindings };
 const out = fileURLToPath(new URL('../src/shaders/programs.generated.ts', import.meta.url));
@@ -51,4 +52,11 @@ ${entries.join('\n')}
 } as const satisfies Record<string, GeneratedProgram>;
 `;
 if (!existsSync(out) || readFileSync(out, 'utf8') !== text) writeFileSync(out, text);
-console.log(`generate: ${entries.length} programs linked`);
+let rasterCount: number;
+try {
+  rasterCount = await generateRasterPrograms(sources);
+} catch (error) {
+  console.error(`generate: ${(error as Error).message}`);
+  process.exit(1);
+}
+console.log(`generate: ${entries.length} programs linked, ${rasterCount} raster programs`);

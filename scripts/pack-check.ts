@@ -1,12 +1,16 @@
 // Checks the published package as a consumer sees it: `npm pack`, install the tarball into a fresh
-// project, then import it as ESM and require it as CommonJS on Node 24 and type-check consumer
-// code against its .d.ts (module/moduleResolution nodenext, both the import and require
-// conditions). Run after `npm run build` (`npm run pack:check` does both).
+// project, then import it as ESM and require it as CommonJS on Node 24, bundle it for browsers
+// with esbuild and webpack with no configuration (the "browser" condition: dist/browser), and
+// type-check consumer code against its .d.ts (module/moduleResolution nodenext, both the import
+// and require conditions). Run after `npm run build` (`npm run pack:check` does both).
 import { spawnSync, type SpawnSyncReturns } from 'node:child_process';
 import { mkdirSync, mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
+import type { Stats } from 'webpack';
+import { vendoredModules } from './browser-build/index.ts';
+import { noticesFile } from './browser-build/vendored.ts';
 
 const root = fileURLToPath(new URL('..', import.meta.url));
 const node = join(root, 'node_modules/.bin/node');
@@ -37,6 +41,38 @@ function check(name: string, ok: boolean, detail = ''): void {
 // Exports every entry point must have (values), and types consumer code must be able to name.
 const requiredExports = ['supportsWebGpu', 'GpuRendererError', 'isGpuRendererError', 'acquireGpuDevice', 'rendererWavefrontComputeWorkgroupSize', 'encodePng', 'applyToneMapping'];
 
+/** Bundles a browser app that renders and loads glTF, in `consumer`, with esbuild and with webpack. */
+async function checkBrowserBundles(consumer: string): Promise<void> {
+  mkdirSync(join(consumer, 'app'));
+  writeFileSync(
+    join(consumer, 'app/main.js'),
+    `import { createWavefrontPathTracingComputeRenderer, loadGltfScene, createCornellBoxScene } from '${pkg.name}';\n` +
+      `window.app = { createWavefrontPathTracingComputeRenderer, loadGltfScene, createCornellBoxScene };\n`,
+  );
+  const installed = join(consumer, 'node_modules', pkg.name, 'dist');
+  const { build } = await import('esbuild');
+  try {
+    const result = await build({ entryPoints: [join(consumer, 'app/main.js')], bundle: true, platform: 'browser', format: 'esm', splitting: true, outdir: join(consumer, 'out-esbuild'), absWorkingDir: consumer, metafile: true, logLevel: 'silent' });
+    const inputs = Object.keys(result.metafile.inputs).map((p) => join(consumer, p));
+    check('esbuild bundles it for the browser with no configuration', result.warnings.length === 0, result.warnings.map((w) => w.text).join('; '));
+    check('esbuild resolves the browser build (dist/browser, vendor/mikktspace.js)', inputs.includes(join(installed, 'browser/index.js')) && inputs.includes(join(installed, 'browser', vendoredModules.mikktspace!)) && !inputs.some((p) => p.startsWith(join(installed, 'esm'))));
+  } catch (error) {
+    failures.push(`esbuild bundles it for the browser with no configuration: ${String(error)}`);
+  }
+  const { default: webpack } = await import('webpack');
+  const stats = await new Promise<Stats | undefined>((resolve) => {
+    webpack({ mode: 'development', devtool: false, context: consumer, entry: './app/main.js', output: { path: join(consumer, 'out-webpack') } }, (error, result) => {
+      if (error) failures.push(`webpack: ${String(error)}`);
+      resolve(result);
+    });
+  });
+  if (stats) {
+    const info = stats.toJson({ all: false, errors: true, warnings: true });
+    const problems = [...(info.errors ?? []), ...(info.warnings ?? [])].map((e) => e.message.split('\n')[0]);
+    check('webpack 5 bundles it for the web with no configuration', problems.length === 0, problems.join('; '));
+  }
+}
+
 const work = mkdtempSync(join(tmpdir(), 'gpu-renderer-pack-'));
 try {
   // 1. The tarball and what it holds.
@@ -44,7 +80,8 @@ try {
   if (!packed) throw new Error('npm pack failed');
   const info = (JSON.parse(packed) as { filename: string; size: number; unpackedSize: number; files: { path: string }[] }[])[0];
   const files = new Set(info.files.map((f) => f.path));
-  for (const f of ['package.json', 'README.md', 'dist/esm/index.js', 'dist/esm/index.d.ts', 'dist/cjs/index.js', 'dist/cjs/index.d.ts', 'dist/cjs/package.json', 'dist/esm/cli/main.js']) {
+  const browserFiles = ['dist/browser/index.js', ...[...Object.values(vendoredModules), noticesFile].map((f) => `dist/browser/${f}`)];
+  for (const f of ['package.json', 'README.md', 'dist/esm/index.js', 'dist/esm/index.d.ts', 'dist/cjs/index.js', 'dist/cjs/index.d.ts', 'dist/cjs/package.json', 'dist/esm/cli/main.js', ...browserFiles]) {
     check(`tarball has ${f}`, files.has(f));
   }
   const stray = [...files].filter((f) => !f.startsWith('dist/') && !['package.json', 'README.md', 'LICENSE'].includes(f));
@@ -87,11 +124,20 @@ try {
   const cjsCount = step('CommonJS require on Node 24', sh(node, ['cjs.cjs'], consumer)).trim();
   check('ESM and CommonJS entries export the same names', esmCount !== '' && esmCount === cjsCount, `${esmCount} vs ${cjsCount}`);
 
+  // The browser build loads in Node too: the same export names as the ESM entry.
+  writeFileSync(join(consumer, 'browser.mjs'), `const r = await import('./node_modules/${pkg.name}/dist/browser/index.js');\nconsole.log(Object.keys(r).length);\n`);
+  const browserCount = step('browser build imported on Node 24', sh(node, ['browser.mjs'], consumer)).trim();
+  check('browser and ESM entries export the same number of names', browserCount !== '' && browserCount === esmCount, `${browserCount} vs ${esmCount}`);
+
+  // 4. Browser bundles with no configuration: esbuild (platform browser) and webpack (web target)
+  // both resolve the browser entry and bundle it, glTF loading with MikkTSpace included.
+  await checkBrowserBundles(consumer);
+
   // The bin: installed into node_modules/.bin, executable, runs --help.
   const help = sh(node, [join(consumer, 'node_modules/.bin/gpu-renderer'), '--help'], consumer);
   check('bin gpu-renderer --help', help.status === 0 && help.stdout.includes('Usage: gpu-renderer'), help.stderr);
 
-  // 4. Types: consumer code type-checks against the shipped .d.ts through both conditions.
+  // 5. Types: consumer code type-checks against the shipped .d.ts through both conditions.
   const typeTest = (header: string): string =>
     `${header}\n` +
     `const err: GpuRendererError = new GpuRendererError('INVALID_SCENE_FILE', 'x', { field: 'meshes[0]' });\n` +

@@ -13,3 +13,4 @@ export * from './transport/index.ts';
 export * from './xr/index.ts';
 export * from './animation/index.ts';
 export * from './io/index.ts';
+export * from './raster/index.ts';

@@ -1,5 +1,8 @@
 /** Command-line parsing for `gpu-renderer`, kept free of I/O so it is testable in isolation. */
 import { GpuRendererError } from '../errors/gpu-renderer-error.ts';
+import type { WavefrontAovName } from '../post/aovs.ts';
+import { imageFileFormatFromPath, type ImageFileFormat } from '../post/files/image-file.ts';
+import { parseAovList, parseDuration } from '../post/option-parsing.ts';
 import type { WavefrontToneMapping } from '../scene/types.ts';
 
 export interface RenderCommand {
@@ -20,7 +23,23 @@ export interface RenderCommand {
   seed: number;
   toneMapping: WavefrontToneMapping;
   exposure: number;
+  /** Exposure in stops, multiplying `exposure` by 2^exposureEv (display only). */
+  exposureEv: number;
   out: string;
+  /** Output format, from the extension of `out`. */
+  format: ImageFileFormat;
+  /** Stop after this many milliseconds (--time); spp stays the ceiling. */
+  timeLimitMs?: number;
+  /** Adaptive sampling's noise threshold (--noise); spp stays the ceiling. */
+  noiseThreshold?: number;
+  /** Adaptive sampling's per-pixel minimum (--min-spp). */
+  minSpp?: number;
+  /** AOV layers written into an .exr output (--aov). */
+  aovs: WavefrontAovName[];
+  /** Denoise the image (--denoise); an .exr keeps the raw beauty as layer raw.R/G/B. */
+  denoise: boolean;
+  /** OpenEXR pixel type (--half: half floats, else float). */
+  half: boolean;
 }
 
 export interface HelpCommand {
@@ -39,25 +58,41 @@ export const renderDefaults = {
   seed: 0,
   toneMapping: 'neutral',
   exposure: 1,
+  exposureEv: 0,
   out: 'render.png',
-} as const satisfies Omit<RenderCommand, 'kind' | 'scenePath'>;
+  format: 'png',
+  denoise: false,
+  half: false,
+} as const satisfies Omit<RenderCommand, 'kind' | 'scenePath' | 'aovs'>;
 
 export const usage = `Usage: gpu-renderer render [scene.json | model.glb | model.gltf] [options]
 
-Renders a scene with the WebGPU wavefront path tracer and writes a PNG.
-The scene is a scene JSON file or a glTF 2.0 asset (.glb or .gltf, chosen by extension).
-Without a scene file it renders the built-in Cornell box.
+Renders a scene with the WebGPU wavefront path tracer and writes a PNG, OpenEXR or Radiance HDR
+image (by the extension of --out). The scene is a scene JSON file or a glTF 2.0 asset (.glb or
+.gltf, chosen by extension). Without a scene file it renders the built-in Cornell box.
 
 Options:
   --width <px>             image width (default ${renderDefaults.width})
   --height <px>            image height (default ${renderDefaults.height})
-  --spp <n>                samples per pixel (default ${renderDefaults.spp})
+  --spp <n>                samples per pixel; the ceiling with --time or --noise (default ${renderDefaults.spp})
+  --time <duration>        stop after this long, e.g. 30s, 2m, 1m30s (the progress bar counts down)
+  --noise <threshold>      adaptive sampling: pixels stop once their noise estimate is below this
+                           (Cycles' noise threshold, e.g. 0.01); the render ends when all have
+  --min-spp <n>            with --noise: samples every pixel takes first (default: Cycles' rule,
+                           at most spp / 4)
   --spp-per-frame <n>      samples per pixel per GPU frame (default ${renderDefaults.sppPerFrame})
   --max-depth <n>          scattering events per path, 1..32 (default ${renderDefaults.maxDepth})
   --seed <n>               sampler seed, 0..4294967295 (default ${renderDefaults.seed})
   --tone-mapping <mode>    neutral | aces | agx | linear (default ${renderDefaults.toneMapping})
   --exposure <x>           radiance multiplier before tone mapping (default ${renderDefaults.exposure})
-  --out <file.png>         output image (default ${renderDefaults.out})
+  --exposure-ev <stops>    exposure in stops, multiplying --exposure by 2^stops (default 0)
+  --out <file>             output image: .png (tone mapped), .exr or .hdr (linear radiance,
+                           exposure and tone mapping do not apply) (default ${renderDefaults.out})
+  --aov <list>             .exr only: AOV layers, comma separated: albedo, normal, depth, emission,
+                           objectId, materialId, variance, sampleCount
+  --denoise                denoise (edge-avoiding a-trous on the GPU); an .exr keeps the raw
+                           beauty as layer raw.R/G/B
+  --half                   .exr only: half-float channels (ids and counts stay float)
   --camera <name>          glTF: render from the camera (node or camera) of that name
                            (default the scene's first camera, else one framing the scene)
   --variant <name>         glTF: KHR_materials_variants variant to render
@@ -88,7 +123,7 @@ export function isGltfPath(path: string): boolean {
 
 /** Parses the arguments after `render` (e.g. `['scene.json', '--spp', '16']`). */
 export function parseRenderArgs(argv: readonly string[]): RenderCommand | HelpCommand {
-  const command: RenderCommand = { kind: 'render', scenePath: undefined, ...renderDefaults };
+  const command: RenderCommand = { kind: 'render', scenePath: undefined, ...renderDefaults, aovs: [] };
   let sppPerFrameGiven = false;
   for (let i = 0; i < argv.length; i++) {
     const arg = argv[i];
@@ -147,6 +182,30 @@ export function parseRenderArgs(argv: readonly string[]): RenderCommand | HelpCo
       case '--exposure':
         command.exposure = positiveNumber(flag, take());
         break;
+      case '--exposure-ev': {
+        const text = take();
+        const ev = text.trim() === '' ? Number.NaN : Number(text);
+        if (!Number.isFinite(ev) || Math.abs(ev) > 64) invalid(flag, `expected a number of stops in [-64, 64], got ${JSON.stringify(text)}`);
+        command.exposureEv = ev;
+        break;
+      }
+      case '--time':
+        command.timeLimitMs = parseDuration(take(), flag);
+        break;
+      case '--noise':
+        command.noiseThreshold = positiveNumber(flag, take());
+        break;
+      case '--min-spp':
+        command.minSpp = integer(flag, take(), 2, 65536);
+        break;
+      case '--aov':
+        command.aovs = parseAovList(take(), flag);
+        break;
+      case '--denoise':
+      case '--half':
+        if (value !== undefined) invalid(flag, 'takes no value');
+        command[flag === '--denoise' ? 'denoise' : 'half'] = true;
+        break;
       case '--camera':
       case '--variant': {
         const name = take();
@@ -165,6 +224,15 @@ export function parseRenderArgs(argv: readonly string[]): RenderCommand | HelpCo
     }
   }
   if (!sppPerFrameGiven) command.sppPerFrame = Math.min(command.sppPerFrame, command.spp);
+  try {
+    command.format = imageFileFormatFromPath(command.out);
+  } catch {
+    invalid('--out', `cannot tell the image format from ${JSON.stringify(command.out)} (expected .png, .exr or .hdr)`);
+  }
+  if (command.aovs.length > 0 && command.format !== 'exr') invalid('--aov', 'AOV layers need an .exr output');
+  if (command.half && command.format !== 'exr') invalid('--half', 'applies to .exr output only');
+  if (command.minSpp !== undefined && command.noiseThreshold === undefined) invalid('--min-spp', 'applies with --noise');
+  if (command.minSpp !== undefined && command.minSpp > command.spp) invalid('--min-spp', `must be <= --spp (${command.spp})`);
   for (const [flag, value] of [['--camera', command.camera], ['--variant', command.variant]] as const) {
     if (value !== undefined && (command.scenePath === undefined || !isGltfPath(command.scenePath))) invalid(flag, 'applies to glTF scenes (.glb or .gltf) only');
   }

@@ -6,8 +6,19 @@ export interface ProgressStream {
   columns?: number;
 }
 
+/**
+ * What the caller knows better than done / total: with a time limit or a noise target the render
+ * may end before `total` samples. `fraction` replaces done / total for the bar, `remainingSeconds`
+ * the extrapolated time left, `note` adds a short status (e.g. the share of pixels still sampling).
+ */
+export interface ProgressEstimate {
+  fraction?: number;
+  remainingSeconds?: number;
+  note?: string;
+}
+
 export interface ProgressBar {
-  update(done: number, total: number): void;
+  update(done: number, total: number, estimate?: ProgressEstimate): void;
   /** Ends the bar's line (TTY) so later output starts on a new line. */
   finish(): void;
 }
@@ -24,11 +35,12 @@ export function createProgressBar(stream: ProgressStream, label = 'render', now:
   let lastDecile = -1;
   let open = false;
   return {
-    update(done: number, total: number): void {
-      const fraction = total > 0 ? Math.min(Math.max(done / total, 0), 1) : 1;
+    update(done: number, total: number, estimate: ProgressEstimate = {}): void {
+      const fraction = Math.min(Math.max(estimate.fraction ?? (total > 0 ? done / total : 1), 0), 1);
       const elapsed = (now() - start) / 1000;
-      const eta = fraction > 0 ? (elapsed * (1 - fraction)) / fraction : Number.NaN;
-      const stats = `${done}/${total} spp ${(100 * fraction).toFixed(0).padStart(3)}%  ${formatDuration(elapsed)} elapsed, ${fraction < 1 ? `~${formatDuration(eta)} left` : 'done'}`;
+      const eta = estimate.remainingSeconds ?? (fraction > 0 ? (elapsed * (1 - fraction)) / fraction : Number.NaN);
+      const note = estimate.note ? `  ${estimate.note}` : '';
+      const stats = `${done}/${total} spp ${(100 * fraction).toFixed(0).padStart(3)}%  ${formatDuration(elapsed)} elapsed, ${fraction < 1 ? `~${formatDuration(eta)} left` : 'done'}${note}`;
       if (stream.isTTY) {
         const width = Math.max(10, Math.min(40, (stream.columns ?? 80) - stats.length - label.length - 6));
         const filled = Math.round(fraction * width);

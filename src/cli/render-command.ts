@@ -1,10 +1,17 @@
-/** The `render` command: load a scene, path trace it in small increments with progress, write a PNG. */
+/**
+ * The `render` command: load a scene, path trace it in small increments with progress until the
+ * sample ceiling, the time limit or the noise target, write a PNG, OpenEXR (with AOV layers) or
+ * Radiance HDR image.
+ */
 import { createWavefrontPathTracingComputeRenderer } from '../pathtracer/index.ts';
 import type { WavefrontPathTracingRenderer } from '../pathtracer/types.ts';
 import { GpuRendererError } from '../errors/gpu-renderer-error.ts';
 import { createCornellBoxScene } from '../scene/cornell-box.ts';
 import type { WavefrontSceneDescription } from '../scene/types.ts';
 import { writePng } from '../post/png-node.ts';
+import { writeImageFile } from '../post/files/image-file.ts';
+import type { WavefrontAovName } from '../post/aovs.ts';
+import { defaultAdaptiveSamplingParameters } from '../post/adaptive-sampling/converged-mask.ts';
 import { createProgressBar, type ProgressStream } from './progress.ts';
 import type { RenderSummary } from './render-format.ts';
 import { isGltfPath, type RenderCommand } from './args.ts';
@@ -35,9 +42,18 @@ export async function loadScene(
   return file.scene;
 }
 
+/** Adaptive sampling's minimum for the CLI: Cycles' rule for the threshold, at most spp / 4 (and 2 at least). */
+export function cliMinimumSamples(command: RenderCommand): number | undefined {
+  if (command.noiseThreshold === undefined) return undefined;
+  if (command.minSpp !== undefined) return command.minSpp;
+  const cycles = defaultAdaptiveSamplingParameters(1, command.noiseThreshold).minimumSamplesPerPixel;
+  return Math.max(2, Math.min(cycles, Math.floor(command.spp / 4)));
+}
+
 export async function runRenderCommand(command: RenderCommand, io: { stderr: ProgressStream } = { stderr: process.stderr }): Promise<RenderSummary> {
   const t0 = performance.now();
   const scene = await loadScene(command.scenePath, { camera: command.camera, variant: command.variant, stderr: io.stderr });
+  const minimumSamplesPerPixel = cliMinimumSamples(command);
   const renderer: WavefrontPathTracingRenderer = await createWavefrontPathTracingComputeRenderer({
     width: command.width,
     height: command.height,
@@ -46,37 +62,76 @@ export async function runRenderCommand(command: RenderCommand, io: { stderr: Pro
     seed: command.seed,
     toneMapping: command.toneMapping,
     exposure: command.exposure,
+    exposureEv: command.exposureEv,
+    aovs: command.aovs.some((a) => a !== 'sampleCount'),
+    denoise: command.denoise,
+    ...(command.noiseThreshold !== undefined ? { adaptiveThreshold: command.noiseThreshold, minimumSamplesPerPixel } : {}),
     ...scene,
   });
   try {
+    const pixels = command.width * command.height;
     const progress = createProgressBar(io.stderr);
     let accumulated = 0;
+    let pixelSamples = 0;
     let rays = 0;
     let invalidSamples = 0;
     let renderMs = 0;
+    let lastFrameMs: number | null = null;
+    let stoppedBy: RenderSummary['stoppedBy'] = 'spp';
+    const started = performance.now();
+    const deadline = command.timeLimitMs === undefined ? Infinity : started + command.timeLimitMs;
     progress.update(0, command.spp);
     while (accumulated < command.spp) {
+      const left = deadline - performance.now();
+      if (left <= 0) {
+        stoppedBy = 'time';
+        break;
+      }
       const spp = Math.min(command.sppPerFrame, command.spp - accumulated);
+      // Close to the time limit a frame gets the time left as its budget (at least one pass).
+      const budgeted = Number.isFinite(left) && (lastFrameMs === null || 1.5 * lastFrameMs > left);
       const start = performance.now();
-      const stats = await renderer.renderFrame({ samplesPerPixel: spp });
-      renderMs += performance.now() - start;
+      const stats = await renderer.renderFrame({ samplesPerPixel: spp, ...(budgeted ? { frameTimeBudgetMs: left, minimumSamplesPerPixel: 1 } : {}) });
+      lastFrameMs = performance.now() - start;
+      renderMs += lastFrameMs;
+      if (stats.samplesAdded <= 0 && !stats.adaptive) throw new GpuRendererError('INVALID_STATE', 'renderFrame added no samples');
       accumulated = stats.samplesAccumulated;
+      pixelSamples += stats.rays.camera;
       rays += stats.rays.total;
-      invalidSamples += stats.invalidSamples;
-      progress.update(accumulated, command.spp);
-      if (stats.samplesAdded <= 0) throw new GpuRendererError('INVALID_STATE', 'renderFrame added no samples');
+      invalidSamples += stats.radianceDiagnostics.invalidSamples;
+      const elapsed = performance.now() - started;
+      const estimates = [(command.spp - accumulated) * (elapsed / Math.max(1, accumulated))];
+      if (Number.isFinite(deadline)) estimates.push(Math.max(0, deadline - performance.now()));
+      if (stats.adaptive) estimates.push((stats.adaptive.estimatedRemainingPixelSamples * elapsed) / Math.max(1, pixelSamples));
+      const remaining = Math.min(...estimates);
+      const converged = stats.adaptive !== null && stats.adaptive.activePixels === 0;
+      progress.update(accumulated, command.spp, {
+        ...(estimates.length > 1 ? { fraction: converged ? 1 : elapsed / (elapsed + remaining), remainingSeconds: remaining / 1000 } : {}),
+        ...(stats.adaptive ? { note: `${((100 * stats.adaptive.activePixels) / pixels).toFixed(0)}% px sampling` } : {}),
+      });
+      if (converged) {
+        stoppedBy = 'noise';
+        break;
+      }
+      if (budgeted && accumulated < command.spp && performance.now() >= deadline) {
+        stoppedBy = 'time';
+        break;
+      }
     }
     progress.finish();
-    const pixels = await renderer.readPixels();
-    await writePng(command.out, pixels);
+    await writeOutput(renderer, command);
     const renderSeconds = renderMs / 1000;
     return {
       width: command.width,
       height: command.height,
       samplesPerPixel: accumulated,
+      meanSamplesPerPixel: pixelSamples / pixels,
+      stoppedBy,
+      denoised: command.denoise,
+      aovs: command.aovs,
       renderSeconds,
       totalSeconds: (performance.now() - t0) / 1000,
-      samplesPerSecond: (command.width * command.height * accumulated) / renderSeconds,
+      samplesPerSecond: pixelSamples / renderSeconds,
       rays,
       raysPerSecond: rays / renderSeconds,
       invalidSamples,
@@ -86,4 +141,22 @@ export async function runRenderCommand(command: RenderCommand, io: { stderr: Pro
   } finally {
     renderer.destroy();
   }
+}
+
+/**
+ * Writes the image: a PNG is what the display shows (tone mapped, exposed, denoised if asked); an
+ * .exr or .hdr holds linear radiance (the denoised beauty with --denoise, the raw one kept as layer
+ * raw.R/G/B in an .exr), with the AOV layers --aov names in an .exr.
+ */
+async function writeOutput(renderer: WavefrontPathTracingRenderer, command: RenderCommand): Promise<void> {
+  if (command.format === 'png') {
+    await writePng(command.out, await renderer.readPixels());
+    return;
+  }
+  const raw = await renderer.readRadiance();
+  const beauty = command.denoise ? await renderer.readDenoised() : raw;
+  const aovs: Partial<Record<WavefrontAovName, Float32Array>> = {};
+  for (const name of command.aovs) aovs[name] = (await renderer.readAov(name)).data;
+  const layers = command.denoise && command.format === 'exr' ? [{ name: 'raw', channels: ['R', 'G', 'B'], data: raw.data }] : [];
+  await writeImageFile(command.out, beauty, { format: command.format, pixelType: command.half ? 'half' : 'float', aovs, layers });
 }

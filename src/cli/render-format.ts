@@ -4,12 +4,20 @@ import { formatDuration } from './progress.ts';
 export interface RenderSummary {
   width: number;
   height: number;
+  /** Sample passes: the most samples any pixel took. */
   samplesPerPixel: number;
+  /** Mean samples per pixel (fewer than samplesPerPixel with --noise). */
+  meanSamplesPerPixel?: number;
+  /** What ended the render: the spp ceiling, --time or --noise (every pixel converged). */
+  stoppedBy?: 'spp' | 'time' | 'noise';
+  denoised?: boolean;
+  /** AOV layers written into the .exr. */
+  aovs?: readonly string[];
   /** Seconds spent in renderFrame calls (excludes setup and the PNG write). */
   renderSeconds: number;
   /** Seconds from start to the written PNG. */
   totalSeconds: number;
-  /** width * height * spp / renderSeconds. */
+  /** Pixel samples taken / renderSeconds. */
   samplesPerSecond: number;
   rays: number;
   raysPerSecond: number;
@@ -32,8 +40,14 @@ export function formatRate(value: number): string {
 }
 
 export function formatSummary(s: RenderSummary): string {
+  const adaptive = s.meanSamplesPerPixel !== undefined && s.meanSamplesPerPixel < s.samplesPerPixel - 1e-9 ? `, mean ${s.meanSamplesPerPixel.toFixed(1)}` : '';
+  const extras = [
+    s.stoppedBy && s.stoppedBy !== 'spp' ? `stopped by ${s.stoppedBy === 'time' ? 'the time limit' : 'the noise target'}` : '',
+    s.denoised ? 'denoised' : '',
+    s.aovs && s.aovs.length > 0 ? `AOVs ${s.aovs.join(', ')}` : '',
+  ].filter((e) => e !== '');
   return [
-    `wrote ${s.out} (${s.width}x${s.height}, ${s.samplesPerPixel} spp)`,
+    `wrote ${s.out} (${s.width}x${s.height}, ${s.samplesPerPixel} spp${adaptive})${extras.length > 0 ? `; ${extras.join('; ')}` : ''}`,
     `  ${formatRate(s.samplesPerSecond)}samples/s, ${formatRate(s.raysPerSecond)}rays/s (${formatRate(s.rays)}rays), ` +
       `${formatDuration(s.renderSeconds)} rendering, ${formatDuration(s.totalSeconds)} total`,
     `  adapter: ${s.adapter}${s.invalidSamples > 0 ? `; ${s.invalidSamples} invalid samples dropped` : ''}`,

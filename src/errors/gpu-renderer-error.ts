@@ -28,7 +28,9 @@ export type GpuRendererErrorCode =
   /** An environment map, environment file, sky description or portal that cannot be used. */
   | 'INVALID_ENVIRONMENT'
   /** A punctual or area light with missing, non-finite or out-of-range parameters. */
-  | 'INVALID_LIGHT';
+  | 'INVALID_LIGHT'
+  /** A feature flag asking for a transport that would add bias (this renderer is unbiased by construction). */
+  | 'BIASED_TRANSPORT_REFUSED';
 
 export class GpuRendererError extends Error {
   readonly code: GpuRendererErrorCode;

@@ -49,10 +49,21 @@ export const pathTracerBindings = {
   counters: { group: G.transport, binding: 5, kind: 'storage', access: 'read_write', type: 'array<atomic<u32>, QUEUE_COUNTER_COUNT>', doc: 'queue lengths and statistics' },
   samples: { group: G.transport, binding: 6, kind: 'storage', access: 'read_write', type: 'array<SampleRecord>', doc: 'radiance and AOVs of every path sample' },
   film: { group: G.transport, binding: 7, kind: 'storage', access: 'read_write', type: 'array<vec4f>', doc: 'full-frame accumulation: radiance sum, sample count' },
-  filmAovs: { group: G.transport, binding: 11, kind: 'storage', access: 'read_write', type: 'array<vec4f>', doc: 'AOV sums per pixel: (albedo, depth), (normal, hits)' },
+  filmAovs: { group: G.transport, binding: 11, kind: 'storage', access: 'read_write', type: 'array<vec4f>', doc: 'AOV sums per pixel: (albedo, depth), (normal, hits), (emission, squared luminance of the radiance without it)' },
   dispatchArgs: { group: G.transport, binding: 8, kind: 'storage', access: 'read_write', type: 'array<u32>', doc: 'indirect dispatch arguments written from queue lengths' },
   wave: { group: G.transport, binding: 9, kind: 'uniform', dynamic: true, type: 'WaveUniforms', doc: 'per-wave constants' },
   bounce: { group: G.transport, binding: 10, kind: 'uniform', dynamic: true, type: 'BounceUniforms', doc: 'per-bounce constants' },
+  // Output (issue 9): film moments and ids, adaptive sampling, denoising. Minimal 16-byte buffers
+  // stand in where a feature is off.
+  filmMoments: { group: G.transport, binding: 16, kind: 'storage', access: 'read_write', type: 'array<vec4f>', doc: 'per pixel: (sum of even-indexed samples, their count), (sum of squared radiance, sum of squared luminance)' },
+  filmIds: { group: G.transport, binding: 17, kind: 'storage', access: 'read_write', type: 'array<u32>', doc: 'per pixel: 1 + instance index of the first sample that reached a non-specular hit (0: none)' },
+  adaptive: { group: G.transport, binding: 18, kind: 'uniform', type: 'AdaptiveUniforms', doc: 'adaptive-sampling convergence constants' },
+  adaptiveError: { group: G.transport, binding: 19, kind: 'storage', access: 'read_write', type: 'array<f32>', doc: 'per-pixel error estimate of the last convergence test' },
+  adaptivePixels: { group: G.transport, binding: 20, kind: 'storage', access: 'read_write', type: 'array<atomic<u32>>', doc: 'counts (ADAPTIVE_* slots), then the indices of the pixels still sampling' },
+  denoise: { group: G.transport, binding: 21, kind: 'uniform', type: 'DenoiseUniforms', doc: 'constants of one denoiser pass' },
+  denoiseColor: { group: G.transport, binding: 22, kind: 'storage', access: 'read_write', type: 'array<vec4f>', doc: 'two halves: demodulated radiance and its luminance variance' },
+  denoiseGuide: { group: G.transport, binding: 23, kind: 'storage', access: 'read_write', type: 'array<vec4f>', doc: 'per pixel: (albedo, depth), (normal, coverage), (emission, 0)' },
+  denoised: { group: G.transport, binding: 24, kind: 'storage', access: 'read_write', type: 'array<vec4f>', doc: 'denoised radiance (rgb, 1)' },
 } as const satisfies Record<string, BindingSpec>;
 
 export type PathTracerBindingName = keyof typeof pathTracerBindings;

@@ -24,6 +24,17 @@ export const queueCounterSlots = {
   absorbedPaths: 13,
   invalidBsdfSamples: 14,
   traversalFallbacks: 15,
+  // Output diagnostics (issue 9): per-sample counts and terminal luminance as 64-bit fixed point
+  // (lo word, then hi word; LUMINANCE_FRACTION_BITS fractional bits), summed per workgroup.
+  invalidPathSamples: 16,
+  invalidThroughputTerminations: 17,
+  clampEquivalentSamples: 18,
+  totalLuminanceLo: 19,
+  totalLuminanceHi: 20,
+  emitterLuminanceLo: 21,
+  emitterLuminanceHi: 22,
+  environmentLuminanceLo: 23,
+  environmentLuminanceHi: 24,
 } as const;
 
 export type QueueCounterName = keyof typeof queueCounterSlots;
@@ -180,6 +191,27 @@ export const SURFACE_FLAG_ANALYTIC = 4;
 /** The record is an escaped ray (wo = -direction): the environment's radiance reaches it. */
 export const SURFACE_FLAG_ESCAPED = 8;
 
+/** Fractional bits of the 64-bit fixed-point luminance tallies of the frame diagnostics. */
+export const LUMINANCE_FRACTION_BITS = 16;
+/**
+ * Samples with a channel above this count as `legacyClampEquivalentSamples`: what the mirrored
+ * package's legacy 4.0 clamp would have altered. Counted only; nothing is clamped.
+ */
+export const LEGACY_CLAMP_EQUIVALENT_RADIANCE = 4;
+
+/** Header words of the adaptive-sampling pixel list (then the active pixel indices). */
+export const adaptiveListSlots = {
+  /** Pixels still sampling (the list length). */
+  activeCount: 0,
+  /** Predicted samples the active pixels still need, 64-bit (lo, hi). */
+  predictedSamplesLo: 2,
+  predictedSamplesHi: 3,
+  listStart: 4,
+} as const;
+
+export const PRESENTATION_TONEMAPPED = 0;
+export const PRESENTATION_LINEAR = 1;
+
 export const TONE_MAPPING_NEUTRAL = 0;
 export const TONE_MAPPING_ACES = 1;
 export const TONE_MAPPING_LINEAR = 2;
@@ -268,6 +300,11 @@ export const gpuConstants: Readonly<Record<string, number>> = Object.freeze({
   TONE_MAPPING_ACES,
   TONE_MAPPING_LINEAR,
   TONE_MAPPING_AGX,
+  LUMINANCE_FRACTION_BITS,
+  LEGACY_CLAMP_EQUIVALENT_RADIANCE,
+  PRESENTATION_TONEMAPPED,
+  PRESENTATION_LINEAR,
+  ...Object.fromEntries(Object.entries(adaptiveListSlots).map(([name, slot]) => [`ADAPTIVE_${snakeUpper(name)}`, slot])),
   ...Object.fromEntries(Object.entries(queueCounterSlots).map(([name, slot]) => [`COUNTER_${snakeUpper(name)}`, slot])),
   ...Object.fromEntries(Object.entries(dispatchArgSlots).map(([name, slot]) => [`DISPATCH_ARGS_${snakeUpper(name)}`, slot])),
 });

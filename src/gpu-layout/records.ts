@@ -366,22 +366,30 @@ export const shadowRayLayout: StructLayout = defineStructLayout('ShadowRay', 2, 
   ['reserved', 'u32'],
 ]);
 
-/** What one path sample contributes: radiance plus the first non-specular hit's AOVs. */
-export const sampleRecordLayout: StructLayout = defineStructLayout('SampleRecord', 1, [
+/**
+ * What one path sample contributes: radiance plus the first non-specular hit's AOVs, and the
+ * luminance tallies of its terminal contributions (frame diagnostics `terminalRadiance`).
+ */
+export const sampleRecordLayout: StructLayout = defineStructLayout('SampleRecord', 2, [
   ['radiance', 'vec3f'],
   ['aovWritten', 'u32', '1 once the first non-specular hit wrote the AOVs'],
   ['albedo', 'vec3f'],
   ['depth', 'f32', 'distance from the camera to the first hit'],
   ['normal', 'vec3f', 'world shading normal'],
-  ['objectId', 'u32'],
+  ['objectId', 'u32', 'instance index of the first non-specular hit (readAov maps it to object and material ids)'],
+  ['emission', 'vec3f', 'emitted radiance committed at the first non-specular hit (emission AOV; the denoiser leaves it out)'],
+  ['emitterLuminance', 'f32', 'luminance committed from emitter hits (MIS-weighted)'],
+  ['environmentLuminance', 'f32', 'luminance committed from escaped paths'],
+  ['invalid', 'u32', '1 once a contribution of this sample was dropped as NaN, Inf or negative'],
+  ['reserved', 'u32'],
 ]);
 
 /** Per-wave constants (one tile, one sample): bound with a dynamic offset. */
-export const waveUniformsLayout: StructLayout = defineStructLayout('WaveUniforms', 1, [
+export const waveUniformsLayout: StructLayout = defineStructLayout('WaveUniforms', 2, [
   ['tileOrigin', 'vec2u'],
-  ['tileSize', 'vec2u'],
+  ['tileSize', 'vec2u', 'list waves (adaptive sampling): (paths, 1)'],
   ['sampleIndex', 'u32', 'sample number every pixel of the tile takes in this wave'],
-  ['reserved0', 'u32'],
+  ['activeOffset', 'u32', 'list waves: first entry of the active-pixel list; INDEX_NONE for tile waves'],
   ['reserved1', 'u32'],
   ['reserved2', 'u32'],
 ]);
@@ -399,10 +407,38 @@ export const bounceUniformsLayout: StructLayout = defineStructLayout('BounceUnif
 ]);
 
 /** Display resolve constants. */
-export const resolveUniformsLayout: StructLayout = defineStructLayout('ResolveUniforms', 1, [
+export const resolveUniformsLayout: StructLayout = defineStructLayout('ResolveUniforms', 2, [
   ['imageSize', 'vec2u'],
   ['toneMapping', 'u32', 'TONE_MAPPING_* id'],
-  ['exposure', 'f32'],
+  ['exposure', 'f32', 'linear multiplier: exposure * 2^exposureEv'],
+  ['output', 'u32', 'PRESENTATION_TONEMAPPED or PRESENTATION_LINEAR'],
+  ['reserved0', 'u32'],
+  ['reserved1', 'u32'],
+  ['reserved2', 'u32'],
+]);
+
+// ---- Output: adaptive sampling and denoising (bind group 3, per pass) ------------------------------
+
+/** Constants of the adaptive-sampling convergence test (Cycles' stop criterion). */
+export const adaptiveUniformsLayout: StructLayout = defineStructLayout('AdaptiveUniforms', 1, [
+  ['imageSize', 'vec2u'],
+  ['threshold', 'f32', 'noise threshold of the per-pixel error'],
+  ['minimumSamples', 'u32', 'pixels with fewer samples never converge'],
+  ['exposure', 'f32', 'display exposure multiplying both estimates (Cycles film exposure)'],
+  ['sampleCeiling', 'u32', 'most samples a pixel may take (bounds the predicted remaining samples)'],
+  ['reserved0', 'u32'],
+  ['reserved1', 'u32'],
+]);
+
+/** Constants of one pass of the edge-avoiding a-trous denoiser. */
+export const denoiseUniformsLayout: StructLayout = defineStructLayout('DenoiseUniforms', 1, [
+  ['imageSize', 'vec2u'],
+  ['stepSize', 'u32', 'a-trous tap spacing 2^iteration in pixels'],
+  ['inBase', 'u32', 'first pixel of the input half of denoiseColor'],
+  ['outBase', 'u32', 'first pixel of the output half of denoiseColor'],
+  ['sigmaLuminance', 'f32', 'luminance edge-stopping, in standard deviations of the noise'],
+  ['sigmaNormal', 'f32', 'normal edge-stopping exponent'],
+  ['sigmaDepth', 'f32', 'depth edge-stopping, in depth-gradient units'],
 ]);
 
 /** Every record layout, by WGSL struct name. */
@@ -435,6 +471,8 @@ export const wavefrontRecordLayouts = {
   WaveUniforms: waveUniformsLayout,
   BounceUniforms: bounceUniformsLayout,
   ResolveUniforms: resolveUniformsLayout,
+  AdaptiveUniforms: adaptiveUniformsLayout,
+  DenoiseUniforms: denoiseUniformsLayout,
 } as const;
 
 /** Records stored in vec4 heaps get generated WGSL loaders (`load_<snake name>(heap offset)`). */

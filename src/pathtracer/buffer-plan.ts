@@ -1,5 +1,5 @@
 import { GpuRendererError } from '../errors/gpu-renderer-error.ts';
-import { dispatchArgWords, dynamicUniformStride, queueCounterCount } from '../gpu-layout/constants.ts';
+import { adaptiveListSlots, dispatchArgWords, dynamicUniformStride, queueCounterCount } from '../gpu-layout/constants.ts';
 import {
   alphaPrimitiveLayout,
   bvhNodeLayout,
@@ -11,6 +11,8 @@ import {
   rayWorkItemLayout,
   resolveUniformsLayout,
   sampleRecordLayout,
+  adaptiveUniformsLayout,
+  denoiseUniformsLayout,
   shadingWorkItemLayout,
   shadowRayLayout,
   surfaceRecordLayout,
@@ -41,6 +43,10 @@ export interface BufferPlanInput {
   tileSize: number;
   maxDepth: number;
   aovs: boolean;
+  /** Output features that size full-frame buffers (issue 9); all false keeps them minimal. */
+  output?: { moments: boolean; adaptive: boolean; denoise: boolean };
+  /** Waves encoded per command buffer (maxFramePassesPerSubmission); default maxWavesPerSubmission. */
+  wavesPerSubmission?: number;
   /** Bytes of the vertex streams and of the index buffer (pack-vertices.ts vertexStreamBytes). */
   vertexStreams: number;
   indices: number;
@@ -65,6 +71,8 @@ export function planBuffers(i: BufferPlanInput): Record<PlannedBufferName, Plann
   const scene = (bytes: number, what: string, field = 'meshes'): PlannedBuffer => ({ bytes, category: 'scene', field, what });
   const queue = (bytes: number, what: string): PlannedBuffer => ({ bytes, category: 'queue', field: 'tileSize', what });
   const frame = (bytes: number, what: string): PlannedBuffer => ({ bytes, category: 'frame', field: 'width', what });
+  const out = i.output ?? { moments: false, adaptive: false, denoise: false };
+  const perPixel = (on: boolean, count = 1): number => (on ? pixels * count : 1);
   return {
     primitives: scene(n * primitiveLayout.size, 'the primitive buffer'),
     // A binary BVH over n primitives has at most 2n - 1 nodes.
@@ -85,10 +93,19 @@ export function planBuffers(i: BufferPlanInput): Record<PlannedBufferName, Plann
     counters: queue(queueCounterCount * 4, 'the queue counters'),
     samples: queue(capacity * sampleRecordLayout.size, 'the sample records'),
     dispatchArgs: queue(dispatchArgWords * 4, 'the indirect dispatch arguments'),
-    wave: queue(maxWavesPerSubmission * dynamicUniformStride, 'the wave constants'),
+    wave: queue((i.wavesPerSubmission ?? maxWavesPerSubmission) * dynamicUniformStride, 'the wave constants'),
     bounce: queue((i.maxDepth + 1) * dynamicUniformStride, 'the bounce constants'),
     film: frame(pixels * 16, 'the accumulation buffer (width x height)'),
-    filmAovs: frame((i.aovs ? pixels : 1) * 32, 'the AOV accumulation (width x height)'),
+    filmAovs: frame((i.aovs ? pixels : 1) * 48, 'the AOV accumulation (width x height)'),
+    filmMoments: frame(perPixel(out.moments, 2) * 16, 'the film moments (width x height)'),
+    filmIds: frame(perPixel(i.aovs) * 4, 'the id AOV (width x height)'),
+    adaptive: frame(adaptiveUniformsLayout.size, 'the adaptive-sampling constants'),
+    adaptiveError: frame(perPixel(out.adaptive) * 4, 'the adaptive-sampling errors (width x height)'),
+    adaptivePixels: frame((adaptiveListSlots.listStart + (out.adaptive ? pixels : 0)) * 4, 'the active-pixel list (width x height)'),
+    denoise: frame(denoiseUniformsLayout.size, 'the denoiser input constants'),
+    denoiseColor: frame(perPixel(out.denoise, 2) * 16, 'the denoiser ping-pong buffers (width x height)'),
+    denoiseGuide: frame(perPixel(out.denoise, 3) * 16, 'the denoiser guides (width x height)'),
+    denoised: frame(perPixel(out.denoise) * 16, 'the denoised image (width x height)'),
     displayUniforms: frame(resolveUniformsLayout.size, 'the display constants'),
     displayPixels: frame(pixels * 4, 'the display pixels (width x height)'),
     timestamps: frame(16, 'the timestamp results'),

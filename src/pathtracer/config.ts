@@ -2,6 +2,7 @@ import { fail, requireInteger, requireNumberInRange, requireVec } from '../error
 import { maxRadiance } from '../scene/limits.ts';
 import type { WavefrontToneMapping } from '../scene/types.ts';
 import { normalizeWavefrontCamera, type WavefrontCamera } from './camera.ts';
+import { outputOptionNames, parseOutputOptions, type WavefrontOutputConfig } from './output-options.ts';
 import type { WavefrontPathTracingOptions } from './types.ts';
 
 export const maxWavefrontDepth = 32;
@@ -20,8 +21,10 @@ export interface WavefrontPathTracingComputeConfig {
   environment: [number, number, number];
   toneMapping: WavefrontToneMapping;
   exposure: number;
-  /** Accumulate albedo, normal and depth AOVs of the first non-specular hit. */
+  /** Accumulate albedo, normal, depth, id and variance AOVs of the first non-specular hit. */
   aovs: boolean;
+  /** Adaptive sampling, denoiser, presentation, submission bounds and feature flags (output-options.ts). */
+  output: WavefrontOutputConfig;
   /** Multiple-scattering energy compensation of rough microfacet lobes (materials). */
   energyCompensation: boolean;
 }
@@ -32,6 +35,7 @@ const toneMappings: readonly WavefrontToneMapping[] = ['neutral', 'aces', 'linea
 export const wavefrontOptionNames: ReadonlySet<string> = new Set<keyof WavefrontPathTracingOptions>([
   'width', 'height', 'maxDepth', 'samplesPerPixel', 'tileSize', 'seed', 'camera', 'meshes', 'instances', 'materials', 'textures',
   'images', 'sceneObjects', 'lights', 'environment', 'toneMapping', 'exposure', 'aovs', 'shaderSpecialization', 'canvas', 'device', 'powerPreference',
+  ...outputOptionNames,
   'energyCompensation',
 ]);
 
@@ -64,8 +68,9 @@ export function createWavefrontPathTracingComputeConfig(options: Partial<Wavefro
   const exposure = options.exposure === undefined ? 1 : requireNumberInRange(options.exposure, 'exposure', { min: 0 });
   if (options.aovs !== undefined && typeof options.aovs !== 'boolean') fail('INVALID_OPTION', 'aovs', 'expected a boolean');
   if (options.energyCompensation !== undefined && typeof options.energyCompensation !== 'boolean') fail('INVALID_OPTION', 'energyCompensation', 'expected a boolean');
+  const output = parseOutputOptions(options);
   return {
-    width, height, maxDepth, samplesPerPixel, tileSize, seed, camera, environment, toneMapping, exposure, aovs: options.aovs ?? false,
+    width, height, maxDepth, samplesPerPixel, tileSize, seed, camera, environment, toneMapping, exposure, aovs: options.aovs ?? false, output,
     energyCompensation: options.energyCompensation ?? false,
   };
 }

@@ -1,5 +1,6 @@
 import { dispatchArgSlots, dynamicUniformStride, rendererWavefrontComputeWorkgroupSize } from '../gpu-layout/constants.ts';
 import type { KernelBindGroups } from './bind-groups.ts';
+import type { DispatchTally } from './dispatch-tally.ts';
 import type { WavefrontKernelName } from './pipelines.ts';
 import type { Wave } from './tiling.ts';
 
@@ -20,18 +21,28 @@ interface Offsets {
 export class WavefrontEncoder {
   private readonly kernels: Record<WavefrontKernelName, KernelBindGroups>;
   private readonly dispatchArgs: GPUBuffer;
+  /** Upper bound of an indirect dispatch's workgroups: the queue capacity's. */
+  private readonly indirectBound: number;
+  /** Receives a count of every dispatch (frame diagnostics); replaced per frame. */
+  tally: DispatchTally | null = null;
 
-  constructor(kernels: Record<WavefrontKernelName, KernelBindGroups>, dispatchArgs: GPUBuffer) {
+  constructor(kernels: Record<WavefrontKernelName, KernelBindGroups>, dispatchArgs: GPUBuffer, queueCapacity = 0) {
     this.kernels = kernels;
     this.dispatchArgs = dispatchArgs;
+    this.indirectBound = Math.ceil(queueCapacity / rendererWavefrontComputeWorkgroupSize);
   }
 
   private dispatch(pass: GPUComputePassEncoder, name: WavefrontKernelName, offsets: Offsets, work: number | { indirect: number }): void {
     const k = this.kernels[name];
     pass.setPipeline(k.pipeline);
     k.groups.forEach((group, g) => pass.setBindGroup(g, group, k.dynamic[g]!.map((d) => offsets[d as keyof Offsets])));
-    if (typeof work === 'number') pass.dispatchWorkgroups(work);
-    else pass.dispatchWorkgroupsIndirect(this.dispatchArgs, work.indirect * 4);
+    if (typeof work === 'number') {
+      pass.dispatchWorkgroups(work);
+      this.tally?.direct(work, name === 'prepareIntersect' ? 1 : rendererWavefrontComputeWorkgroupSize);
+    } else {
+      pass.dispatchWorkgroupsIndirect(this.dispatchArgs, work.indirect * 4);
+      this.tally?.indirect(this.indirectBound);
+    }
   }
 
   encode(pass: GPUComputePassEncoder, waves: readonly Wave[], maxDepth: number): void {

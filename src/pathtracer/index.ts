@@ -13,6 +13,8 @@ export {
   type WavefrontReferenceTraceResult,
 } from './reference.ts';
 export { wavefrontKernels } from './pipelines.ts';
+export { defaultDenoiseSettings, outputOptionNames, type WavefrontOutputConfig } from './output-options.ts';
+export { featureFlagNames, resolveFeatureFlags, transportExperimentBehaviour, transportExperimentNames } from './feature-flags.ts';
 export type * from './types.ts';
 
 /** The execution model of the path tracer. */

@@ -4,7 +4,7 @@ import { ShaderStage } from '../gpu/webgpu-constants.ts';
 import { displayBindings } from '../shaders/display-bindings.ts';
 import type { ShaderFeatures } from '../shaders/features.ts';
 import { generatedPrograms } from '../shaders/programs.generated.ts';
-import type { ProgramName } from '../shaders/programs.ts';
+import { programSpecs, type ProgramName } from '../shaders/programs.ts';
 
 /** The compute kernels of one wavefront wave, with the program and entry point of each. */
 export const wavefrontKernels = {
@@ -37,10 +37,7 @@ export interface PathTracerPipelines {
 }
 
 const tables: Record<string, Record<string, BindingSpec>> = { pathTracer: pathTracerBindings, display: displayBindings };
-const programTable: Record<ProgramName, string> = {
-  camera: 'pathTracer', prepare: 'pathTracer', intersect: 'pathTracer', evaluateMaterials: 'pathTracer',
-  scatter: 'pathTracer', shadow: 'pathTracer', accumulate: 'pathTracer', resolve: 'display', present: 'display',
-};
+const programTable = Object.fromEntries(Object.entries(programSpecs).map(([name, spec]) => [name, spec.bindings])) as Record<ProgramName, string>;
 
 /** Explicit bind group layouts for exactly the bindings a program's linked WGSL declares. */
 export function programLayout(device: GPUDevice, program: ProgramName, visibility: number = ShaderStage.COMPUTE): ProgramLayout {
@@ -103,7 +100,7 @@ export function featureKey(features: ShaderFeatures): string {
   return Object.entries(features).map(([k, v]) => `${k}=${v ? 1 : 0}`).join(',');
 }
 
-async function computePipeline(device: GPUDevice, program: ProgramName, entryPoint: string, features: ShaderFeatures): Promise<KernelPipeline> {
+export async function computePipeline(device: GPUDevice, program: ProgramName, entryPoint: string, features: ShaderFeatures): Promise<KernelPipeline> {
   const layout = programLayout(device, program);
   const module = await programModule(device, program);
   const pipeline = await device.createComputePipelineAsync({

@@ -1,20 +1,28 @@
 import { GpuRendererError } from '../errors/gpu-renderer-error.ts';
-import { requireInteger } from '../errors/validate.ts';
 import { acquireGpuDevice } from '../gpu/acquire-device.ts';
 import { BufferUsage } from '../gpu/webgpu-constants.ts';
-import { queueCounterCount } from '../gpu-layout/constants.ts';
+import { queueCounterCount, queueCounterSlots, rendererWavefrontComputeWorkgroupSize } from '../gpu-layout/constants.ts';
+import { instanceLayout } from '../gpu-layout/records.ts';
+import { fieldOf } from '../gpu-layout/struct-layout.ts';
 import { luminance } from '../lighting/emissive-lights.ts';
 import { uploadTextureAtlas } from '../materials/textures/upload-texture-atlas.ts';
+import { isWavefrontAovName, wavefrontAovNames, type WavefrontAovName } from '../post/aovs.ts';
 import { normalizeWavefrontScene, type NormalizedScene } from '../scene/normalize-scene.ts';
 import type { WavefrontCameraInput } from '../scene/types.ts';
 import { allShaderFeatures, type ShaderFeatures } from '../shaders/features.ts';
 import { createKernelBindGroups, type PathTracerResourceMap } from './bind-groups.ts';
-import { checkBufferLimits, maxWavesPerSubmission, planBuffers, queueCapacity, type BufferPlanInput, type PlannedBuffer, type PlannedBufferName } from './buffer-plan.ts';
+import { checkBufferLimits, planBuffers, queueCapacity, type BufferPlanInput, type PlannedBuffer, type PlannedBufferName } from './buffer-plan.ts';
 import { normalizeWavefrontCamera } from './camera.ts';
 import { resolveCanvasTarget } from './canvas-target.ts';
 import { createWavefrontPathTracingComputeConfig, type WavefrontPathTracingComputeConfig } from './config.ts';
-import { readMeanAov, readMeanRadiance, type AovName } from './film.ts';
-import { encodeFrameReadback, frameStatsFromCounters, readFrameReadback, type FrameReadback } from './frame-stats.ts';
+import { instanceMaterial } from './scene/flatten-primitives.ts';
+import { AdaptiveScheduler, createAdaptivePipelines } from './adaptive-scheduler.ts';
+import { AtrousDenoisePass, createDenoisePipelines } from './denoise-pass.ts';
+import { DispatchTally } from './dispatch-tally.ts';
+import { readAovImage, readMeanRadiance, readRgbaImage, type InstanceIds } from './film.ts';
+import { encodeFrameReadback, frameStatsFromCounters, readFrameReadback } from './frame-stats.ts';
+import { parseRenderFrameOptions, type ParsedFrameOptions } from './output-options.ts';
+import type { WavefrontOutputState, WavefrontRenderProgress } from './output-types.ts';
 import { WavefrontEncoder } from './frame-encoder.ts';
 import { GpuBufferSet, readGpuBuffer } from './gpu-buffers.ts';
 import { pathTracerPipelines, type PathTracerPipelines } from './pipelines.ts';
@@ -23,7 +31,7 @@ import { prepareScene, type PreparedScene } from './scene/prepare-scene.ts';
 import { vertexStreamBytes } from './scene/pack-vertices.ts';
 import { materialFeatures } from './scene/material-features.ts';
 import { materialHeapCells } from './scene/pack-materials.ts';
-import { planWaves, tileCount } from './tiling.ts';
+import { planListWaves, planWaves, tileCount, type Wave } from './tiling.ts';
 import type {
   WavefrontFrameStats,
   WavefrontMemoryStats,
@@ -51,7 +59,9 @@ function planInput(config: WavefrontPathTracingComputeConfig, scene: NormalizedS
     height: config.height,
     tileSize: config.tileSize,
     maxDepth: config.maxDepth,
-    aovs: config.aovs,
+    aovs: outputFeatures(config).aovs,
+    output: { moments: outputFeatures(config).moments, adaptive: config.output.adaptive !== null, denoise: config.output.denoise !== null },
+    wavesPerSubmission: config.output.maxFramePassesPerSubmission,
     ...vertexStreamBytes(scene.meshes),
     primitiveCount: scene.triangleCount + scene.sceneObjects.length,
     alphaPrimitiveCount: alpha,
@@ -60,6 +70,23 @@ function planInput(config: WavefrontPathTracingComputeConfig, scene: NormalizedS
     // Cores, extension blocks and texture bindings (the exact heap, tables included, is checked after packing).
     materialCells: materialHeapCells([...scene.materials, ...scene.sceneObjects.map((o) => o.material)]),
   };
+}
+
+/**
+ * Object id (the packed instance record's objectId: the instance's numeric id, else its index) and
+ * material index of every instance record, for the id AOVs.
+ */
+function instanceIdTables(scene: NormalizedScene, prepared: PreparedScene): InstanceIds {
+  const count = scene.instances.length + scene.sceneObjects.length;
+  const objectIds = new Int32Array(count);
+  const materialIds = new Int32Array(count);
+  const view = new DataView(prepared.instances);
+  const objectIdOffset = fieldOf(instanceLayout, 'objectId').offset;
+  for (let i = 0; i < count; i++) objectIds[i] = view.getUint32(i * instanceLayout.size + objectIdOffset, true);
+  scene.instances.forEach((inst, i) => (materialIds[i] = instanceMaterial(scene, inst)));
+  // Analytic scene objects own their materials, numbered after the scene's.
+  scene.sceneObjects.forEach((_, k) => (materialIds[scene.instances.length + k] = scene.materials.length + k));
+  return { objectIds, materialIds };
 }
 
 /**
@@ -76,6 +103,12 @@ function environmentSelectProbability(environment: readonly number[], sceneRadiu
   return Math.min(0.95, Math.max(0.05, envPower / (envPower + lightPower)));
 }
 
+/** Output accumulation the options need: the denoiser's guides are the AOVs, its variance the moments. */
+function outputFeatures(config: WavefrontPathTracingComputeConfig): { aovs: boolean; moments: boolean } {
+  const denoise = config.output.denoise !== null;
+  return { aovs: config.aovs || denoise, moments: config.aovs || denoise || config.output.adaptive !== null };
+}
+
 /** The shader features a scene needs; everything else is compiled out. */
 function sceneFeatures(prepared: PreparedScene, config: WavefrontPathTracingComputeConfig): ShaderFeatures {
   return {
@@ -84,7 +117,9 @@ function sceneFeatures(prepared: PreparedScene, config: WavefrontPathTracingComp
     FEATURE_TEXTURES: prepared.uses.textures,
     FEATURE_EMISSIVE_LIGHTS: prepared.uses.emissiveLights,
     FEATURE_ENVIRONMENT: config.environment.some((c) => c > 0),
-    FEATURE_AOVS: config.aovs,
+    FEATURE_AOVS: outputFeatures(config).aovs,
+    FEATURE_FILM_MOMENTS: outputFeatures(config).moments,
+    FEATURE_ADAPTIVE_SAMPLING: config.output.adaptive !== null,
     ...materialFeatures(prepared.uses.materials),
   };
 }
@@ -113,8 +148,12 @@ export async function createWavefrontPathTracingComputeRenderer(options: Wavefro
     const plan = planBuffers({ ...estimate, materialCells: prepared.materials.byteLength / 16, lightCount: prepared.lightCount, primitiveCount: prepared.primitiveCount });
     checkBufferLimits(limits, plan);
     const features = specialization === 'off' ? allShaderFeatures : sceneFeatures(prepared, config);
-    const pipelines = await pathTracerPipelines(acquired.device, features);
-    const renderer = new WavefrontRenderer(acquired, config, scene, prepared, pipelines, plan);
+    const [pipelines, adaptivePipelines, denoisePipelines] = await Promise.all([
+      pathTracerPipelines(acquired.device, features),
+      config.output.adaptive ? createAdaptivePipelines(acquired.device, features) : null,
+      config.output.denoise ? createDenoisePipelines(acquired.device, features) : null,
+    ]);
+    const renderer = new WavefrontRenderer(acquired, config, scene, prepared, { ...pipelines, adaptive: adaptivePipelines, denoise: denoisePipelines }, plan);
     if (canvas) await renderer.attachCanvas(canvas);
     return renderer;
   } catch (error) {
@@ -123,7 +162,24 @@ export async function createWavefrontPathTracingComputeRenderer(options: Wavefro
   }
 }
 
-class WavefrontRenderer implements WavefrontPathTracingRenderer {
+/** Samples per adaptive-sampling step: the convergence test runs (and its count is read) between steps. */
+export const adaptiveStepSamples = 4;
+
+type RendererPipelines = PathTracerPipelines & {
+  adaptive: Awaited<ReturnType<typeof createAdaptivePipelines>> | null;
+  denoise: Awaited<ReturnType<typeof createDenoisePipelines>> | null;
+};
+
+/** What one frame's passes produced, before the statistics are read back. */
+interface FrameOutcome {
+  samplesAdded: number;
+  waves: number;
+  submissions: number;
+  tally: DispatchTally;
+  pixelSamples: number;
+}
+
+class WavefrontRenderer extends EventTarget implements WavefrontPathTracingRenderer {
   readonly device: GPUDevice;
   private readonly ownsDevice: boolean;
   private readonly adapter: string;
@@ -138,8 +194,15 @@ class WavefrontRenderer implements WavefrontPathTracingRenderer {
   private readonly display: FilmDisplay;
   private readonly timing: { querySet: GPUQuerySet; resolve: GPUBuffer } | null;
   private readonly environmentSelectProbability: number;
+  private readonly adaptive: AdaptiveScheduler | null;
+  private readonly denoiser: AtrousDenoisePass | null;
+  private readonly instanceIds: InstanceIds;
   private frameCount = 0;
   private samplesAccumulated = 0;
+  /** Pixel samples in the accumulation (differs from pixels x samplesAccumulated with adaptive sampling). */
+  private pixelSamplesAccumulated = 0;
+  /** Whether `denoised` holds the denoiser's output for the current accumulation. */
+  private denoisedFresh = false;
   private destroyed = false;
   private deviceLost = false;
   private deviceLostMessage = '';
@@ -149,9 +212,10 @@ class WavefrontRenderer implements WavefrontPathTracingRenderer {
     config: WavefrontPathTracingComputeConfig,
     scene: NormalizedScene,
     prepared: PreparedScene,
-    pipelines: PathTracerPipelines,
+    pipelines: RendererPipelines,
     plan: Record<PlannedBufferName, PlannedBuffer>,
   ) {
+    super();
     const device = (this.device = acquired.device);
     this.ownsDevice = acquired.ownsDevice;
     this.adapter = acquired.adapterDescription;
@@ -180,6 +244,13 @@ class WavefrontRenderer implements WavefrontPathTracingRenderer {
       counters: S | BufferUsage.COPY_SRC | BufferUsage.COPY_DST,
       film: S | BufferUsage.COPY_SRC | BufferUsage.COPY_DST,
       filmAovs: S | BufferUsage.COPY_SRC | BufferUsage.COPY_DST,
+      filmMoments: S | BufferUsage.COPY_SRC | BufferUsage.COPY_DST,
+      filmIds: S | BufferUsage.COPY_SRC | BufferUsage.COPY_DST,
+      adaptive: BufferUsage.UNIFORM | BufferUsage.COPY_DST,
+      adaptiveError: S | BufferUsage.COPY_SRC,
+      adaptivePixels: S | BufferUsage.COPY_SRC | BufferUsage.COPY_DST,
+      denoise: BufferUsage.UNIFORM | BufferUsage.COPY_DST,
+      denoised: S | BufferUsage.COPY_SRC,
       displayPixels: S | BufferUsage.COPY_SRC,
       dispatchArgs: S | BufferUsage.INDIRECT,
       timestamps: BufferUsage.QUERY_RESOLVE | BufferUsage.COPY_SRC,
@@ -200,8 +271,14 @@ class WavefrontRenderer implements WavefrontPathTracingRenderer {
       displayFilm: resources.film,
       displayPixels: resources.displayPixels,
     };
-    this.encoderOfWaves = new WavefrontEncoder(createKernelBindGroups(device, pipelines.kernels, map), resources.dispatchArgs);
-    this.display = new FilmDisplay(device, pipelines.resolve, map);
+    this.encoderOfWaves = new WavefrontEncoder(createKernelBindGroups(device, pipelines.kernels, map), resources.dispatchArgs, this.capacity);
+    const out = config.output;
+    this.display = new FilmDisplay(device, pipelines.resolve, map, out.denoise ? resources.denoised : undefined);
+    if (out.denoise?.present === 'denoised') this.display.source = 'denoised';
+    this.adaptive = out.adaptive && pipelines.adaptive ? new AdaptiveScheduler(device, pipelines.adaptive, map, out.adaptive, config.width, config.height) : null;
+    this.denoiser = out.denoise && pipelines.denoise ? new AtrousDenoisePass(device, pipelines.denoise, map, out.denoise, config.width, config.height, b) : null;
+    this.adaptive?.reset();
+    this.instanceIds = instanceIdTables(scene, prepared);
     device.queue.writeBuffer(resources.bounce, 0, packBounceUniforms(config.maxDepth, this.capacity));
     this.writeFrameUniforms();
     this.writeDisplayUniforms();
@@ -230,7 +307,10 @@ class WavefrontRenderer implements WavefrontPathTracingRenderer {
 
   private writeDisplayUniforms(): void {
     const c = this.config;
-    this.device.queue.writeBuffer(this.resources.displayUniforms, 0, packDisplayUniforms(c.width, c.height, c.toneMapping, c.exposure));
+    const exposure = c.exposure * 2 ** c.output.exposureEv;
+    this.device.queue.writeBuffer(this.resources.displayUniforms, 0, packDisplayUniforms(c.width, c.height, c.toneMapping, exposure, c.output.presentationOutput));
+    // The noise threshold applies to the image as displayed (Cycles multiplies by the film exposure).
+    this.adaptive?.writeUniforms(c.width, c.height, exposure);
   }
 
   async attachCanvas(canvas: Parameters<FilmDisplay['attachCanvas']>[0]): Promise<void> {
@@ -242,75 +322,244 @@ class WavefrontRenderer implements WavefrontPathTracingRenderer {
     if (this.deviceLost) throw new GpuRendererError('DEVICE_LOST', `the GPU device was lost: ${this.deviceLostMessage}`);
   }
 
-  /** Encodes and submits the waves of `samples` samples per pixel in bounded submissions. */
-  private submitFrame(samples: number, readStats: boolean): FrameReadback | null {
+  /**
+   * Encodes waves into command buffers of at most maxFramePassesPerSubmission waves each and submits
+   * them; the GPU timestamps bracket the frame (begin at its first pass, end at every batch's last,
+   * so the last write wins). Returns the number of submissions.
+   */
+  private submitWaves(waves: readonly Wave[], firstOfFrame: boolean): number {
     const device = this.device;
-    const { width, height, tileSize, maxDepth } = this.config;
-    const waves = planWaves(width, height, tileSize, this.samplesAccumulated, samples);
-    device.queue.writeBuffer(this.resources.counters, 0, new Uint32Array(queueCounterCount));
-    let readback: FrameReadback | null = null;
-    for (let first = 0; first < waves.length; first += maxWavesPerSubmission) {
-      const batch = waves.slice(first, first + maxWavesPerSubmission);
-      const isFirst = first === 0;
-      const isLast = first + maxWavesPerSubmission >= waves.length;
+    const perSubmission = this.config.output.maxFramePassesPerSubmission;
+    let submissions = 0;
+    for (let first = 0; first < waves.length; first += perSubmission) {
+      const batch = waves.slice(first, first + perSubmission);
+      const begin = firstOfFrame && first === 0;
       device.queue.writeBuffer(this.resources.wave, 0, packWaveUniforms(batch));
       const encoder = device.createCommandEncoder({ label: 'wavefront frame' });
-      const timestampWrites: GPUComputePassTimestampWrites | undefined =
-        this.timing && (isFirst || isLast)
-          ? { querySet: this.timing.querySet, ...(isFirst ? { beginningOfPassWriteIndex: 0 } : {}), ...(isLast ? { endOfPassWriteIndex: 1 } : {}) }
-          : undefined;
+      const timestampWrites: GPUComputePassTimestampWrites | undefined = this.timing
+        ? { querySet: this.timing.querySet, ...(begin ? { beginningOfPassWriteIndex: 0 } : {}), endOfPassWriteIndex: 1 }
+        : undefined;
       const pass = encoder.beginComputePass(timestampWrites ? { timestampWrites } : {});
-      this.encoderOfWaves.encode(pass, batch, maxDepth);
+      this.encoderOfWaves.encode(pass, batch, this.config.maxDepth);
       pass.end();
-      if (isLast) {
-        if (readStats) readback = encodeFrameReadback(device, encoder, this.resources.counters, this.timing);
-        this.display.encodePresent(encoder);
-      }
       device.queue.submit([encoder.finish()]);
+      submissions += 1;
     }
-    this.samplesAccumulated += samples;
-    this.frameCount += 1;
-    return readback;
+    return submissions;
   }
 
-  private samplesFor(options: WavefrontRenderFrameOptions | undefined): number {
-    if (options === undefined) return this.config.samplesPerPixel;
-    if (typeof options !== 'object' || options === null) throw new GpuRendererError('INVALID_OPTION', 'expected an options object', { field: 'options' });
-    for (const key of Object.keys(options)) {
-      if (key !== 'samplesPerPixel') throw new GpuRendererError('INVALID_OPTION', 'unknown renderFrame option', { field: key });
+  private emitProgress(progress: WavefrontRenderProgress, listener: ((p: WavefrontRenderProgress) => void) | null): void {
+    this.config.output.onProgress?.(progress);
+    listener?.(progress);
+    this.dispatchEvent(new CustomEvent('progress', { detail: progress }));
+  }
+
+  /** Starts a frame: zeroed counters, a fresh dispatch tally, the denoised copy out of date. */
+  private beginFrame(): FrameOutcome {
+    const tally = new DispatchTally();
+    this.encoderOfWaves.tally = tally;
+    this.device.queue.writeBuffer(this.resources.counters, 0, new Uint32Array(queueCounterCount));
+    this.denoisedFresh = false;
+    return { samplesAdded: 0, waves: 0, submissions: 0, tally, pixelSamples: 0 };
+  }
+
+  /**
+   * Submits `step` sample passes: tile waves over the image, or list waves over the pixels adaptive
+   * sampling last counted as active, then (adaptive) the convergence test, whose list length comes
+   * back through the returned promise.
+   */
+  private submitStep(outcome: FrameOutcome, step: number): Promise<unknown> | null {
+    const { width, height, tileSize } = this.config;
+    const adaptive = this.adaptive;
+    const active = adaptive ? adaptive.counts.activePixels : width * height;
+    const waves = adaptive ? planListWaves(active, this.capacity, step) : planWaves(width, height, tileSize, this.samplesAccumulated + outcome.samplesAdded, step);
+    outcome.submissions += this.submitWaves(waves, outcome.samplesAdded === 0);
+    outcome.waves += waves.length;
+    outcome.samplesAdded += step;
+    outcome.pixelSamples += step * active;
+    if (!adaptive) return null;
+    const encoder = this.device.createCommandEncoder({ label: 'adaptive sampling' });
+    const staging = adaptive.encodeConvergence(encoder, outcome.tally);
+    this.device.queue.submit([encoder.finish()]);
+    outcome.submissions += 1;
+    return adaptive.read(staging);
+  }
+
+  private endFrame(outcome: FrameOutcome): void {
+    this.encoderOfWaves.tally = null;
+    this.samplesAccumulated += outcome.samplesAdded;
+    this.pixelSamplesAccumulated += outcome.pixelSamples;
+    this.frameCount += 1;
+  }
+
+  /**
+   * Renders a frame's sample passes and waits for them. Without adaptive sampling or a budget: one
+   * group of tile waves. With adaptive sampling: steps of adaptiveStepSamples passes over the active
+   * list, each followed by the convergence test; each step is sized by the list length of the step
+   * before the previous one, so the GPU always has the next step queued while the CPU waits for a
+   * count (the waves bound themselves by the GPU's own count; a pixel a stale count leaves out waits
+   * a step). With a budget: the guaranteed passes, then one pass at a time while the measured pass
+   * time fits (waiting for the GPU between passes).
+   */
+  private async renderPasses(frame: ParsedFrameOptions, started: number): Promise<FrameOutcome> {
+    const outcome = this.beginFrame();
+    const adaptive = this.adaptive;
+    let pendingCount: Promise<unknown> | null = null;
+    while (outcome.samplesAdded < frame.ceiling) {
+      if (adaptive && adaptive.counts.activePixels === 0) break;
+      const rendered = outcome.samplesAdded;
+      let step = frame.ceiling - rendered;
+      if (frame.budgetMs !== null) step = rendered < frame.minimum ? frame.minimum - rendered : 1;
+      if (adaptive) step = Math.min(step, adaptiveStepSamples);
+      const counted = this.submitStep(outcome, step);
+      const more = outcome.samplesAdded < frame.ceiling;
+      if (counted) {
+        if (pendingCount) await pendingCount;
+        pendingCount = counted;
+      } else if (more && frame.budgetMs !== null) {
+        await this.device.queue.onSubmittedWorkDone();
+      }
+      if (!more) break;
+      const elapsedMs = performance.now() - started;
+      const perPassMs = elapsedMs / outcome.samplesAdded;
+      if (frame.budgetMs !== null && outcome.samplesAdded >= frame.minimum && elapsedMs + perPassMs > frame.budgetMs) break;
+      this.emitProgress(this.progressOf(frame, outcome, elapsedMs, false), frame.onProgress);
     }
-    if (options.samplesPerPixel === undefined) return this.config.samplesPerPixel;
-    return requireInteger(options.samplesPerPixel, 'samplesPerPixel', { min: 1, max: 65536 });
+    if (pendingCount) await pendingCount;
+    this.endFrame(outcome);
+    return outcome;
+  }
+
+  private progressOf(frame: ParsedFrameOptions, outcome: FrameOutcome, elapsedMs: number, done: boolean): WavefrontRenderProgress {
+    const pixels = this.config.width * this.config.height;
+    const counts = this.adaptive?.counts ?? null;
+    let remaining = 0;
+    if (!done && outcome.samplesAdded > 0) {
+      const perPass = elapsedMs / outcome.samplesAdded;
+      remaining = (frame.ceiling - outcome.samplesAdded) * perPass;
+      if (counts && outcome.pixelSamples > 0) {
+        // Adaptive frames end when every pixel converged: the predicted pixel samples at the measured rate.
+        remaining = Math.min(remaining, (counts.estimatedRemainingPixelSamples * elapsedMs) / outcome.pixelSamples);
+      }
+      if (frame.budgetMs !== null) remaining = Math.min(remaining, Math.max(0, frame.budgetMs - elapsedMs));
+    }
+    return {
+      frame: this.frameCount + (done ? 0 : 1),
+      samplesThisFrame: outcome.samplesAdded,
+      targetSamplesThisFrame: frame.ceiling,
+      samplesAccumulated: this.samplesAccumulated + (done ? 0 : outcome.samplesAdded),
+      activePixels: counts ? counts.activePixels : pixels,
+      totalPixels: pixels,
+      elapsedMs,
+      estimatedRemainingMs: remaining,
+      estimatedTotalMs: elapsedMs + remaining,
+      estimatedRemainingPixelSamples: counts ? counts.estimatedRemainingPixelSamples : null,
+      done,
+    };
+  }
+
+  /** Denoises the accumulation into `denoised` (in `encoder`) unless it is current. */
+  private encodeDenoise(encoder: GPUCommandEncoder, tally: DispatchTally | null): boolean {
+    if (!this.denoiser || this.denoisedFresh) return false;
+    this.denoiser.encode(encoder, tally);
+    this.denoisedFresh = true;
+    return true;
+  }
+
+  /** The frame's closing submission: denoising when the canvas shows it, the stats copy, the present. */
+  private finishFrame(tally: DispatchTally, readStats: boolean): { readback: ReturnType<typeof encodeFrameReadback> | null; denoised: boolean } {
+    const encoder = this.device.createCommandEncoder({ label: 'frame end' });
+    const denoised = this.display.hasCanvas && this.display.source === 'denoised' ? this.encodeDenoise(encoder, tally) : false;
+    const readback = readStats ? encodeFrameReadback(this.device, encoder, this.resources.counters, this.timing) : null;
+    this.display.encodePresent(encoder);
+    this.device.queue.submit([encoder.finish()]);
+    return { readback, denoised };
+  }
+
+  private outputState(): WavefrontOutputState {
+    const o = this.config.output;
+    return {
+      maxFramePassesPerSubmission: o.maxFramePassesPerSubmission,
+      presentationOutput: o.presentationOutput,
+      exposureEv: o.exposureEv,
+      adaptiveSampling: o.adaptive,
+      denoise: o.denoise,
+      featureFlags: o.features.featureFlags,
+      transportExperiments: o.features.transportExperiments,
+      transportExperimentFlags: o.features.transportExperimentFlags,
+      transportExperimentRequestedFlags: o.features.transportExperimentRequestedFlags,
+    };
   }
 
   async renderFrame(options?: WavefrontRenderFrameOptions): Promise<WavefrontFrameStats> {
     this.assertUsable();
-    const samples = this.samplesFor(options);
+    const frame = parseRenderFrameOptions(options, this.config.samplesPerPixel);
     const started = performance.now();
     const tiles = tileCount(this.config.width, this.config.height, this.config.tileSize);
-    const readback = this.submitFrame(samples, true)!;
+    let outcome: FrameOutcome;
     let result: { counters: Uint32Array; gpuTimeMs: number | null };
+    let denoised: boolean;
     try {
-      result = await readFrameReadback(readback);
+      outcome = await this.renderPasses(frame, started);
+      const end = this.finishFrame(outcome.tally, true);
+      denoised = end.denoised;
+      outcome.submissions += 1;
+      result = await readFrameReadback(end.readback!);
     } catch (error) {
       this.assertUsable();
       throw error;
     }
-    return frameStatsFromCounters(result.counters, {
+    const wallTimeMs = performance.now() - started;
+    const pixels = this.config.width * this.config.height;
+    // The camera-ray counter is exact where the CPU's step accounting used a stale list length.
+    const cameraRays = result.counters[queueCounterSlots.cameraRays]!;
+    this.pixelSamplesAccumulated += cameraRays - outcome.pixelSamples;
+    outcome.pixelSamples = cameraRays;
+    const settings = this.config.output.adaptive;
+    const counts = this.adaptive?.counts;
+    const stats = frameStatsFromCounters(result.counters, {
       frame: this.frameCount,
-      samplesAdded: samples,
+      samplesAdded: outcome.samplesAdded,
       samplesAccumulated: this.samplesAccumulated,
+      samplesPerPixel: frame.ceiling,
+      frameTimeBudgetMs: frame.budgetMs,
       gpuTimeMs: result.gpuTimeMs,
-      wallTimeMs: performance.now() - started,
+      wallTimeMs,
       memory: this.memory(),
       tiles,
-      waves: tiles * samples,
+      waves: outcome.waves,
+      submissions: outcome.submissions,
+      deviceLost: this.deviceLost,
+      gpuParallelism: outcome.tally.report(this.device.limits, rendererWavefrontComputeWorkgroupSize),
+      adaptive:
+        settings && counts
+          ? {
+            threshold: settings.threshold,
+            minimumSamplesPerPixel: settings.minimumSamplesPerPixel,
+            activePixels: counts.activePixels,
+            convergedPixels: pixels - counts.activePixels,
+            pixelSamples: outcome.pixelSamples,
+            meanSamplesPerPixel: this.pixelSamplesAccumulated / pixels,
+            estimatedRemainingPixelSamples: counts.estimatedRemainingPixelSamples,
+          }
+          : null,
+      denoised,
+      output: this.outputState(),
     });
+    this.emitProgress(this.progressOf(frame, outcome, wallTimeMs, true), frame.onProgress);
+    return stats;
   }
 
   renderOnce(options?: WavefrontRenderFrameOptions): void {
     this.assertUsable();
-    this.submitFrame(this.samplesFor(options), false);
+    const frame = parseRenderFrameOptions(options, this.config.samplesPerPixel);
+    if (frame.budgetMs !== null) throw new GpuRendererError('INVALID_OPTION', 'a frame time budget needs renderFrame, which waits for the GPU', { field: 'frameTimeBudgetMs' });
+    const outcome = this.beginFrame();
+    // One step of all the passes; adaptive sampling's count lands when the GPU gets there and sizes
+    // a later frame (nothing here waits for it).
+    if (!(this.adaptive && this.adaptive.counts.activePixels === 0)) void this.submitStep(outcome, frame.ceiling)?.catch(() => undefined);
+    this.endFrame(outcome);
+    this.finishFrame(outcome.tally, false);
   }
 
   updateCamera(camera: WavefrontCameraInput): void {
@@ -324,8 +573,13 @@ class WavefrontRenderer implements WavefrontPathTracingRenderer {
     const encoder = this.device.createCommandEncoder();
     encoder.clearBuffer(this.resources.film);
     encoder.clearBuffer(this.resources.filmAovs);
+    encoder.clearBuffer(this.resources.filmMoments);
+    encoder.clearBuffer(this.resources.filmIds);
     this.device.queue.submit([encoder.finish()]);
+    this.adaptive?.reset();
     this.samplesAccumulated = 0;
+    this.pixelSamplesAccumulated = 0;
+    this.denoisedFresh = false;
     this.frameCount = 0;
   }
 
@@ -334,17 +588,28 @@ class WavefrontRenderer implements WavefrontPathTracingRenderer {
     return readMeanRadiance(this.device, this.resources.film, this.config.width, this.config.height);
   }
 
-  async readAov(name: AovName): Promise<WavefrontRadianceImage> {
+  async readDenoised(): Promise<WavefrontRadianceImage> {
     this.assertUsable();
-    if (name !== 'albedo' && name !== 'normal' && name !== 'depth') throw new GpuRendererError('INVALID_OPTION', `unknown AOV ${JSON.stringify(name)} (albedo, normal, depth)`, { field: 'name' });
-    if (!this.config.aovs) throw new GpuRendererError('INVALID_STATE', 'AOVs were not enabled: create the renderer with aovs: true', { field: 'aovs' });
-    return readMeanAov(this.device, this.resources.film, this.resources.filmAovs, name, this.config.width, this.config.height);
+    if (!this.denoiser) throw new GpuRendererError('INVALID_STATE', 'the denoiser is off: create the renderer with denoise: true', { field: 'denoise' });
+    const encoder = this.device.createCommandEncoder({ label: 'denoise' });
+    if (this.encodeDenoise(encoder, null)) this.device.queue.submit([encoder.finish()]);
+    return readRgbaImage(this.device, this.resources.denoised, this.config.width, this.config.height);
+  }
+
+  async readAov(name: WavefrontAovName): Promise<WavefrontRadianceImage> {
+    this.assertUsable();
+    if (!isWavefrontAovName(name)) throw new GpuRendererError('INVALID_OPTION', `unknown AOV ${JSON.stringify(name)} (${wavefrontAovNames.join(', ')})`, { field: 'name' });
+    if (name !== 'sampleCount' && !this.config.aovs) throw new GpuRendererError('INVALID_STATE', 'AOVs were not enabled: create the renderer with aovs: true', { field: 'aovs' });
+    const r = this.resources;
+    const adaptive = this.adaptive ? { error: r.adaptiveError, pixels: r.adaptivePixels } : null;
+    return readAovImage(this.device, { film: r.film, aovs: r.filmAovs, moments: r.filmMoments, ids: r.filmIds, adaptive }, name, this.config.width, this.config.height, this.instanceIds);
   }
 
   async readPixels(): Promise<WavefrontPixelImage> {
     this.assertUsable();
     const { width, height } = this.config;
     const encoder = this.device.createCommandEncoder();
+    if (this.display.source === 'denoised') this.encodeDenoise(encoder, null);
     this.display.encodeResolve(encoder, width, height);
     this.device.queue.submit([encoder.finish()]);
     const bytes = await readGpuBuffer(this.device, this.resources.displayPixels, width * height * 4);
@@ -380,6 +645,11 @@ class WavefrontRenderer implements WavefrontPathTracingRenderer {
       memory: this.memory(),
       destroyed: this.destroyed,
       deviceLost: this.deviceLost,
+      adaptive: this.adaptive ? { activePixels: this.adaptive.counts.activePixels, meanSamplesPerPixel: this.pixelSamplesAccumulated / (this.config.width * this.config.height) } : null,
+      gpuParallelism: (({ adapterLimits, workgroupSize, physicalCoreCount }) => ({ adapterLimits, workgroupSize, physicalCoreCount }))(
+        new DispatchTally().report(this.device.limits, rendererWavefrontComputeWorkgroupSize),
+      ),
+      ...this.outputState(),
     };
   }
 

@@ -1,9 +1,26 @@
+import type { WavefrontAovName } from '../post/aovs.ts';
 import type { WavefrontCameraInput, WavefrontSceneDescription, WavefrontToneMapping } from '../scene/types.ts';
+import type { WavefrontOutputOptions, WavefrontRenderFrameOptions } from './output-options.ts';
+import type {
+  WavefrontAdaptiveFrameStats,
+  WavefrontGpuParallelism,
+  WavefrontOutputState,
+  WavefrontRadianceDiagnostics,
+  WavefrontTerminalRadiance,
+  WavefrontTransportGuardrails,
+} from './output-types.ts';
+
+export type { WavefrontOutputOptions, WavefrontRenderFrameOptions } from './output-options.ts';
+export type * from './output-types.ts';
+export type { WavefrontFeatureFlagState, WavefrontTransportExperimentState, WavefrontFeatureFlagResolution, TransportExperimentName } from './feature-flags.ts';
 
 export type CanvasTarget = HTMLCanvasElement | OffscreenCanvas | string;
 
-/** Renderer options: the scene (what a scene file or the glTF loader gives) plus render settings. */
-export interface WavefrontPathTracingOptions extends WavefrontSceneDescription {
+/**
+ * Renderer options: the scene (what a scene file or the glTF loader gives) plus render settings and
+ * the output options (adaptive sampling, denoising, presentation, feature flags; output-options.ts).
+ */
+export interface WavefrontPathTracingOptions extends WavefrontSceneDescription, WavefrontOutputOptions {
   width: number;
   height: number;
   /** Scattering events per path (pbrt-v4 semantics), 1..32; default 8. */
@@ -24,7 +41,10 @@ export interface WavefrontPathTracingOptions extends WavefrontSceneDescription {
    * same either way; 'off' exists to check exactly that.
    */
   shaderSpecialization?: 'scene' | 'off';
-  /** Accumulate albedo, normal and depth of each sample's first non-specular hit (readAov). Default false. */
+  /**
+   * Accumulate the AOVs of each sample's first non-specular hit (albedo, normal, depth, object and
+   * material id) and the film moments (variance) for readAov. Default false.
+   */
   aovs?: boolean;
   /**
    * Multiple-scattering energy compensation of rough microfacet lobes (Turquin 2019 for conductors
@@ -63,18 +83,25 @@ export interface WavefrontMemoryStats {
 export interface WavefrontFrameStats {
   /** Frames rendered since the accumulation last restarted. */
   frame: number;
-  /** Samples per pixel added by this call. */
+  /** Samples per pixel added by this call (sample passes; adaptive sampling skips converged pixels). */
   samplesAdded: number;
-  /** Samples per pixel in the accumulation. */
+  /** Samples per pixel in the accumulation (the most any pixel holds with adaptive sampling). */
   samplesAccumulated: number;
+  /** The call's samplesPerPixel: a ceiling when frameTimeBudgetMs or adaptive sampling ends the frame sooner. */
+  samplesPerPixel: number;
+  /** Sample passes actually rendered (equal to samplesAdded; the mirrored API's name). */
+  renderedSamplesPerPixel: number;
+  frameTimeBudgetMs: number | null;
   rays: WavefrontRayCounts;
   /**
    * How paths ended: Russian roulette, reaching maxDepth, escaping to the environment, zero
    * throughput (absorbed), or a BSDF sample with no valid direction.
    */
-  terminations: { russianRoulette: number; maxDepth: number; escaped: number; absorbed: number; invalidBsdfSample: number };
-  /** Samples that produced NaN/Inf or negative radiance (dropped and counted, never clamped). */
+  terminations: { russianRoulette: number; maxDepth: number; escaped: number; absorbed: number; invalidBsdfSample: number; invalidThroughput: number };
+  /** Samples that lost a contribution as NaN/Inf or negative (dropped and counted, never clamped). */
   invalidSamples: number;
+  radianceDiagnostics: WavefrontRadianceDiagnostics;
+  terminalRadiance: WavefrontTerminalRadiance;
   /** Rays whose BVH traversal overflowed its stack and finished in stackless mode (exact, slower). */
   traversalFallbacks: number;
   /** GPU time of this frame in ms where timestamp queries exist, else null. */
@@ -84,6 +111,21 @@ export interface WavefrontFrameStats {
   memory: WavefrontMemoryStats;
   tiles: number;
   waves: number;
+  /** Adaptive sampling's state after the frame; null when it is off. */
+  adaptive: WavefrontAdaptiveFrameStats | null;
+  /** Whether the denoiser ran in this frame (it runs when the canvas shows the denoised image, else on read). */
+  denoised: boolean;
+  gpuParallelism: WavefrontGpuParallelism;
+  transportGuardrails: WavefrontTransportGuardrails;
+  maxFramePassesPerSubmission: number;
+  presentationOutput: WavefrontOutputState['presentationOutput'];
+  exposureEv: number;
+  adaptiveSampling: WavefrontOutputState['adaptiveSampling'];
+  denoise: WavefrontOutputState['denoise'];
+  featureFlags: WavefrontOutputState['featureFlags'];
+  transportExperiments: WavefrontOutputState['transportExperiments'];
+  transportExperimentFlags: number;
+  transportExperimentRequestedFlags: number;
 }
 
 export interface WavefrontRadianceImage {
@@ -100,7 +142,7 @@ export interface WavefrontPixelImage {
   data: Uint8ClampedArray;
 }
 
-export interface WavefrontRendererSnapshot {
+export interface WavefrontRendererSnapshot extends WavefrontOutputState {
   width: number;
   height: number;
   frame: number;
@@ -121,25 +163,43 @@ export interface WavefrontRendererSnapshot {
   memory: WavefrontMemoryStats;
   destroyed: boolean;
   deviceLost: boolean;
+  /** Adaptive sampling: pixels still sampling and mean samples per pixel; null when off. */
+  adaptive: { activePixels: number; meanSamplesPerPixel: number } | null;
+  /** The adapter's compute limits and workgroup size (the per-frame dispatch counts are in frame stats). */
+  gpuParallelism: Pick<WavefrontGpuParallelism, 'adapterLimits' | 'workgroupSize' | 'physicalCoreCount'>;
 }
 
-export interface WavefrontRenderFrameOptions {
-  /** Override samplesPerPixel for this call. */
-  samplesPerPixel?: number;
-}
-
-export interface WavefrontPathTracingRenderer {
+/**
+ * The path tracer. It is an EventTarget: `addEventListener('progress', (e) => e.detail)` receives
+ * WavefrontRenderProgress events (as does the `onProgress` option).
+ */
+export interface WavefrontPathTracingRenderer extends EventTarget {
+  /**
+   * Renders and accumulates samplesPerPixel more samples (a ceiling with frameTimeBudgetMs or
+   * adaptive sampling) and resolves to the frame's statistics.
+   */
   renderFrame(options?: WavefrontRenderFrameOptions): Promise<WavefrontFrameStats>;
-  /** Submits one frame's work without waiting for it. */
+  /** Submits one frame's work without waiting for it (no frameTimeBudgetMs). */
   renderOnce(options?: WavefrontRenderFrameOptions): void;
   updateCamera(camera: WavefrontCameraInput): void;
+  /** The raw linear mean radiance, RGBA float32 (alpha 1), top row first: never denoised. */
   readRadiance(): Promise<WavefrontRadianceImage>;
+  /** The denoised linear radiance of the accumulation (needs `denoise`), RGBA float32 (alpha 1). */
+  readDenoised(): Promise<WavefrontRadianceImage>;
   /**
-   * Mean of an AOV over the accumulated samples (needs `aovs: true`): 'albedo' (rgb), 'normal'
-   * (world shading normal xyz) or 'depth' (distance from the camera, in r); RGBA float32, top row
-   * first. Samples whose path never reached a non-specular surface contribute zeros.
+   * An AOV, RGBA float32, top row first (all but sampleCount need `aovs: true`):
+   * 'albedo' (rgb), 'normal' (world shading normal xyz), 'depth' (distance from the eye, in r) and
+   * 'emission' (rgb: emitted radiance reaching the eye from the first non-specular hit) are means
+   * over the samples with alpha = coverage (the share of samples that reached a non-specular
+   * surface; the others contribute zeros); 'objectId' and 'materialId' (r; -1 where no sample
+   * reached a surface) come from the pixel's first sample that did; 'variance' is the variance of
+   * the mean radiance per channel (rgb) and of the mean luminance of the radiance without the
+   * emission (alpha: the noise the denoiser filters), +Infinity below two samples;
+   * 'sampleCount' (r) the samples the pixel received, with adaptive sampling also the error of the
+   * last convergence test (g; 3.4e38 below the minimum samples) and whether the pixel still samples (b).
    */
-  readAov(name: 'albedo' | 'normal' | 'depth'): Promise<WavefrontRadianceImage>;
+  readAov(name: WavefrontAovName): Promise<WavefrontRadianceImage>;
+  /** What the canvas shows: tone-mapped (or linear) RGBA8 of the raw or denoised image. */
   readPixels(): Promise<WavefrontPixelImage>;
   getSnapshot(): WavefrontRendererSnapshot;
   destroy(): void;

@@ -1,4 +1,4 @@
-import { CAMERA_ORTHOGRAPHIC, CAMERA_PERSPECTIVE, dynamicUniformStride, queueCounterSlots, TONE_MAPPING_ACES, TONE_MAPPING_AGX, TONE_MAPPING_LINEAR, TONE_MAPPING_NEUTRAL } from '../gpu-layout/constants.ts';
+import { CAMERA_ORTHOGRAPHIC, CAMERA_PERSPECTIVE, dynamicUniformStride, INDEX_NONE, PRESENTATION_LINEAR, PRESENTATION_TONEMAPPED, queueCounterSlots, TONE_MAPPING_ACES, TONE_MAPPING_AGX, TONE_MAPPING_LINEAR, TONE_MAPPING_NEUTRAL } from '../gpu-layout/constants.ts';
 import { bounceUniformsLayout, frameUniformsLayout, resolveUniformsLayout, waveUniformsLayout } from '../gpu-layout/records.ts';
 import { writeStruct } from '../gpu-layout/struct-layout.ts';
 import type { WavefrontToneMapping } from '../scene/types.ts';
@@ -67,13 +67,20 @@ export function packWaveUniforms(waves: readonly Wave[]): ArrayBuffer {
       tileOrigin: w.tileOrigin,
       tileSize: w.tileSize,
       sampleIndex: w.sampleIndex,
+      activeOffset: w.activeOffset ?? INDEX_NONE,
     });
   });
   return data;
 }
 
-export function packDisplayUniforms(width: number, height: number, toneMapping: WavefrontToneMapping, exposure: number): ArrayBuffer {
+/** ResolveUniforms: `exposure` is the linear multiplier (exposure * 2^exposureEv). */
+export function packDisplayUniforms(width: number, height: number, toneMapping: WavefrontToneMapping, exposure: number, output: 'tonemapped' | 'linear' = 'tonemapped'): ArrayBuffer {
   const data = new ArrayBuffer(resolveUniformsLayout.size);
-  writeStruct(resolveUniformsLayout, new DataView(data), 0, { imageSize: [width, height], toneMapping: toneMappingIds[toneMapping], exposure });
+  writeStruct(resolveUniformsLayout, new DataView(data), 0, {
+    imageSize: [width, height],
+    toneMapping: toneMappingIds[toneMapping],
+    exposure,
+    output: output === 'linear' ? PRESENTATION_LINEAR : PRESENTATION_TONEMAPPED,
+  });
   return data;
 }

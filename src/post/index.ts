@@ -19,9 +19,10 @@ export {
 } from './tone-mapping.ts';
 export { encodePng, type Rgba8Image } from './png.ts';
 export { writePng } from './png-node.ts';
-export { wavefrontAovChannels, wavefrontAovNames, isWavefrontAovName, type WavefrontAovName } from './aovs.ts';
+export { wavefrontAovChannels, wavefrontAovNames, wavefrontIntegerAovs, isWavefrontAovName, type WavefrontAovName } from './aovs.ts';
 export * from './files/index.ts';
 export * from './metrics/index.ts';
 export * from './adaptive-sampling/index.ts';
+export * from './denoise/index.ts';
 export { parseDuration, parseAovList } from './option-parsing.ts';
 export * from './wavefront-denoise-validation.ts';

@@ -3,7 +3,7 @@
  * argument parser wires them to flags such as `--time-limit 2m30s` and `--aovs albedo,normal`.
  */
 import { GpuRendererError } from '../errors/gpu-renderer-error.ts';
-import { isWavefrontAovName, wavefrontAovNames, type WavefrontAovName } from './aovs.ts';
+import { wavefrontAovNames, type WavefrontAovName } from './aovs.ts';
 
 const unitMs: Record<string, number> = { ms: 1, s: 1000, m: 60_000, h: 3_600_000 };
 
@@ -36,7 +36,7 @@ export function parseDuration(text: string, field = 'duration'): number {
 }
 
 /**
- * A comma-separated AOV list (`'albedo,normal'`), case-insensitive, blanks ignored, duplicates
+ * A comma-separated AOV list (`'albedo,normal,objectId'`), case-insensitive, blanks ignored, duplicates
  * dropped, order kept; `''` and `'none'` give an empty list. Unknown names are typed errors.
  */
 export function parseAovList(text: string, field = 'aovs'): WavefrontAovName[] {
@@ -47,9 +47,10 @@ export function parseAovList(text: string, field = 'aovs'): WavefrontAovName[] {
     .filter((s) => s !== '');
   if (names.length === 1 && names[0] === 'none') return [];
   const out: WavefrontAovName[] = [];
-  for (const name of names) {
-    if (!isWavefrontAovName(name)) {
-      throw new GpuRendererError('INVALID_OPTION', `unknown AOV ${JSON.stringify(name)} (expected a comma-separated list of ${wavefrontAovNames.join(', ')})`, { field });
+  for (const lower of names) {
+    const name = wavefrontAovNames.find((n) => n.toLowerCase() === lower);
+    if (name === undefined) {
+      throw new GpuRendererError('INVALID_OPTION', `unknown AOV ${JSON.stringify(lower)} (expected a comma-separated list of ${wavefrontAovNames.join(', ')})`, { field });
     }
     if (!out.includes(name)) out.push(name);
   }

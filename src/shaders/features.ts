@@ -10,7 +10,9 @@ export const shaderFeatures = {
   FEATURE_TEXTURES: { default: true, doc: 'materials sample the texture atlas' },
   FEATURE_EMISSIVE_LIGHTS: { default: true, doc: 'emissive triangles are sampled by next-event estimation' },
   FEATURE_ENVIRONMENT: { default: true, doc: 'a non-black environment lights the scene' },
-  FEATURE_AOVS: { default: true, doc: 'the first non-specular hit writes albedo, normal and depth' },
+  FEATURE_AOVS: { default: true, doc: 'the first non-specular hit writes albedo, normal, depth and ids' },
+  FEATURE_FILM_MOMENTS: { default: true, doc: 'the film accumulates the half-sample sum and second moments (adaptive sampling, variance, denoising)' },
+  FEATURE_ADAPTIVE_SAMPLING: { default: true, doc: 'waves take their pixels from the active-pixel list of adaptive sampling' },
   // KHR material extensions (materials subsystem): each compiles in when a material uses it.
   FEATURE_SPECULAR: { default: true, doc: 'KHR_materials_specular: specular weight and F0 colour' },
   FEATURE_TRANSMISSION: { default: true, doc: 'KHR_materials_transmission: thin-walled and refractive GGX transmission' },

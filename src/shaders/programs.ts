@@ -19,6 +19,9 @@ export const programSpecs = {
   scatter: { module: 'package::pathtracer::kernels::scatter', bindings: 'pathTracer' },
   shadow: { module: 'package::pathtracer::kernels::shadow', bindings: 'pathTracer' },
   accumulate: { module: 'package::pathtracer::kernels::accumulate', bindings: 'pathTracer' },
+  adaptiveSampling: { module: 'package::pathtracer::adaptive_sampling', bindings: 'pathTracer' },
+  denoiseInput: { module: 'package::pathtracer::denoise_input', bindings: 'pathTracer' },
+  denoise: { module: 'package::post::denoise::atrous', bindings: 'pathTracer' },
   resolve: { module: 'package::post::display::resolve', bindings: 'display' },
   present: { module: 'package::post::display::present', bindings: 'display' },
 } as const satisfies Record<string, ProgramSpec>;

@@ -48,9 +48,46 @@ test('rounds and BVH knobs; bad values are rejected', () => {
   assert.throws(() => parseBenchOptions(['--bvh-only', '--no-bvh'], {}, file), /exclude/);
 });
 
+test('glTF knobs: on by default, --no-gltf / BENCH_GLTF=0 skip it, --gltf-only / BENCH_ONLY=gltf run it alone', () => {
+  assert.equal(parseBenchOptions([], {}, file).gltf, true);
+  assert.equal(parseBenchOptions(['--no-gltf'], {}, file).gltf, false);
+  assert.equal(parseBenchOptions([], { BENCH_GLTF: 'off' }, file).gltf, false);
+  for (const o of [parseBenchOptions(['--gltf-only'], {}, file), parseBenchOptions([], { BENCH_ONLY: 'gltf' }, file)]) {
+    assert.deepEqual([o.gltf, o.bvh, o.pathTracer], [true, false, false]);
+  }
+  const bvhOnly = parseBenchOptions(['--bvh-only'], {}, file);
+  assert.deepEqual([bvhOnly.gltf, bvhOnly.bvh, bvhOnly.pathTracer], [false, true, false]);
+  // The command line's --gltf-only wins over BENCH_ONLY=bvh.
+  const mixed = parseBenchOptions(['--gltf-only'], { BENCH_ONLY: 'bvh' }, file);
+  assert.deepEqual([mixed.gltf, mixed.bvh], [true, false]);
+  assert.throws(() => parseBenchOptions(['--gltf-only', '--no-gltf'], {}, file), /exclude/);
+  assert.throws(() => parseBenchOptions(['--gltf-only', '--bvh-only'], {}, file), /exclude/);
+});
+
 test('bench/baseline.json: a ref is required, the description is optional', () => {
   assert.deepEqual(parseBaselineFile('{ "ref": " abc123 " }'), { ref: 'abc123' });
   assert.equal(parseBaselineFile('{ "description": "x" }'), null);
   assert.equal(parseBaselineFile('[]'), null);
   assert.throws(() => parseBaselineFile('{'));
+});
+
+test('raster knobs: on by default, --no-raster / BENCH_RASTER=0 skip it, --raster-only / BENCH_ONLY=raster run it alone', () => {
+  assert.equal(parseBenchOptions([], {}, file).raster, true);
+  assert.equal(parseBenchOptions(['--no-raster'], {}, file).raster, false);
+  assert.equal(parseBenchOptions([], { BENCH_RASTER: '0' }, file).raster, false);
+  for (const o of [parseBenchOptions(['--raster-only'], {}, file), parseBenchOptions([], { BENCH_ONLY: 'raster' }, file)]) {
+    assert.deepEqual([o.raster, o.bvh, o.gltf, o.pathTracer], [true, false, false, false]);
+  }
+  assert.equal(parseBenchOptions(['--bvh-only'], {}, file).raster, false);
+  assert.throws(() => parseBenchOptions(['--raster-only', '--no-raster'], {}, file), /exclude/);
+  assert.throws(() => parseBenchOptions(['--raster-only', '--gltf-only'], {}, file), /exclude/);
+});
+
+test('output benchmark: opt-in with --output / BENCH_OUTPUT=1, alone with --output-only', () => {
+  assert.equal(parseBenchOptions([], {}, file).output, false);
+  assert.equal(parseBenchOptions(['--output'], {}, file).output, true);
+  assert.equal(parseBenchOptions([], { BENCH_OUTPUT: '1' }, file).output, true);
+  assert.equal(parseBenchOptions([], { BENCH_OUTPUT: '0' }, file).output, false);
+  const alone = parseBenchOptions(['--output-only'], {}, file);
+  assert.deepEqual([alone.output, alone.bvh, alone.gltf, alone.raster, alone.pathTracer], [true, false, false, false, false]);
 });

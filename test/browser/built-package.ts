@@ -1,9 +1,10 @@
 // The ESM build the browser loads: dist/esm when it is at least as new as every source file,
 // otherwise a fresh compile of src into a temporary folder (so a stale or missing dist never tests
-// old code, and the test never deletes a dist another process may be using).
+// old code, and the test never deletes a dist another process may be using). The temporary folder
+// sits under node_modules/.cache, so the build's imports of its dependencies resolve from the
+// repo's node_modules, as dist's do, for any bundler.
 import { spawnSync } from 'node:child_process';
-import { existsSync, mkdtempSync, readdirSync, rmSync, statSync } from 'node:fs';
-import { tmpdir } from 'node:os';
+import { existsSync, mkdirSync, mkdtempSync, readdirSync, rmSync, statSync } from 'node:fs';
 import { join } from 'node:path';
 
 function newestMtime(dir: string): number {
@@ -19,7 +20,9 @@ export function builtPackageDir(root: string): { dir: string; cleanup(): void } 
   const dist = join(root, 'dist/esm');
   const index = join(dist, 'index.js');
   if (existsSync(index) && statSync(index).mtimeMs >= newestMtime(join(root, 'src'))) return { dir: dist, cleanup: () => undefined };
-  const out = mkdtempSync(join(tmpdir(), 'gpu-renderer-esm-'));
+  const cache = join(root, 'node_modules/.cache');
+  mkdirSync(cache, { recursive: true });
+  const out = mkdtempSync(join(cache, 'gpu-renderer-esm-'));
   const tsc = join(root, 'node_modules/typescript-7/bin/tsc');
   // Type errors elsewhere do not stop emission; a missing index.js does.
   spawnSync(process.execPath, [tsc, '-p', 'tsconfig.build.json', '--outDir', out, '--declaration', 'false', '--sourceMap', 'false'], { cwd: root, stdio: 'ignore' });

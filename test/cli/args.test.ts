@@ -23,7 +23,7 @@ function render(argv: string[]): RenderCommand {
 }
 
 test('defaults render the built-in scene', () => {
-  assert.deepEqual(parseCliArgs(['render']), { kind: 'render', scenePath: undefined, ...renderDefaults });
+  assert.deepEqual(parseCliArgs(['render']), { kind: 'render', scenePath: undefined, ...renderDefaults, aovs: [] });
 });
 
 test('every flag, in both --flag value and --flag=value forms', () => {
@@ -31,7 +31,7 @@ test('every flag, in both --flag value and --flag=value forms', () => {
     '--tone-mapping', 'aces', '--exposure=0.5', '--out', 'out/x.png'];
   assert.deepEqual(parseRenderArgs(argv), {
     kind: 'render', scenePath: 'scene.json', width: 32, height: 24, spp: 16, sppPerFrame: 2, maxDepth: 5, seed: 4294967295,
-    toneMapping: 'aces', exposure: 0.5, out: 'out/x.png',
+    toneMapping: 'aces', exposure: 0.5, exposureEv: 0, out: 'out/x.png', format: 'png', denoise: false, half: false, aovs: [],
   });
   // The scene may come after the flags, or after `--` (a name starting with a dash).
   assert.equal(render(['--spp', '1', 'a.json']).scenePath, 'a.json');

@@ -30,7 +30,8 @@ test('parseAovList: comma separated, case-insensitive, de-duplicated, order kept
   assert.deepEqual(parseAovList(''), []);
   assert.deepEqual(parseAovList('none'), []);
   assert.deepEqual(parseAovList('albedo,,'), ['albedo']);
-  assert.throws(() => parseAovList('albedo,emission'), isField('aovs'));
+  assert.throws(() => parseAovList('albedo,shadow'), isField('aovs'));
+  assert.deepEqual(parseAovList('objectid,MaterialId,sampleCount,variance,emission'), ['objectId', 'materialId', 'sampleCount', 'variance', 'emission']);
   assert.throws(() => parseAovList('none,albedo'), isField('aovs'));
   assert.throws(() => parseAovList(undefined as never, 'passes'), isField('passes'));
 });

@@ -4,14 +4,17 @@
  * @gltf-transform build the document with all Khronos extensions registered, plus the Draco and
  * meshopt decoders they need.
  */
-import { Document, GLB_BUFFER, WebIO, type ILogger, type JSONDocument } from '@gltf-transform/core';
+import type { Document} from '@gltf-transform/core';
+import { GLB_BUFFER, WebIO, type ILogger, type JSONDocument } from '@gltf-transform/core';
 import { ALL_EXTENSIONS } from '@gltf-transform/extensions';
 import { GpuRendererError } from '../../errors/gpu-renderer-error.ts';
+import { locateCompressionFault } from './compression-faults.ts';
 import { failGltf, gltfError, pointer } from './errors.ts';
 import { IGNORED_OPTIONAL_EXTENSIONS, UNSUPPORTED_TEXTURE_EXTENSIONS } from './extensions.ts';
 import { isGlb, parseGlb } from './glb-container.ts';
 import { isObject, validateGltfJson } from './json-validation.ts';
 import { readResource, readUrl, sourceStringToUrl } from './resources.ts';
+import { validateSparseIndices } from './sparse-indices.ts';
 
 /** What `loadGltfScene` accepts. */
 export type GltfSource = string | URL | ArrayBuffer | Uint8Array | Document;
@@ -104,20 +107,27 @@ function preferFallbackSources(json: Record<string, unknown>, warnings: string[]
   });
 }
 
-async function loadResources(json: Record<string, unknown>, bufferByteLengths: number[], bin: Uint8Array | undefined, base: URL | undefined, signal: AbortSignal | undefined): Promise<JSONDocument['resources']> {
+interface LoadedResources {
+  /** By URI (GLB_BUFFER for the BIN chunk), as @gltf-transform's readJSON takes them. */
+  resources: JSONDocument['resources'];
+  /** Each buffer's bytes by index; undefined for meshopt fallback buffers, which are never read. */
+  buffers: Array<Uint8Array | undefined>;
+}
+
+async function loadResources(json: Record<string, unknown>, bufferByteLengths: number[], bin: Uint8Array | undefined, base: URL | undefined, signal: AbortSignal | undefined): Promise<LoadedResources> {
   const resources: Record<string, Uint8Array> = {};
-  const buffers = (Array.isArray(json.buffers) ? json.buffers : []) as Array<Record<string, unknown>>;
-  await Promise.all(
-    buffers.map(async (buffer, i) => {
+  const bufferDefs = (Array.isArray(json.buffers) ? json.buffers : []) as Array<Record<string, unknown>>;
+  const buffers = await Promise.all(
+    bufferDefs.map(async (buffer, i): Promise<Uint8Array | undefined> => {
       const at = pointer('buffers', i);
       const meshoptFallback = isObject(buffer.extensions) && isObject(buffer.extensions.EXT_meshopt_compression) && buffer.extensions.EXT_meshopt_compression.fallback === true;
       let data: Uint8Array;
       if (typeof buffer.uri === 'string') {
-        if (meshoptFallback && !buffer.uri.startsWith('data:')) return; // never read: meshopt decodes instead
+        if (meshoptFallback && !buffer.uri.startsWith('data:')) return undefined; // never read: meshopt decodes instead
         data = await readResource(buffer.uri, base, at, signal);
         resources[buffer.uri] = data;
       } else if (meshoptFallback) {
-        return;
+        return undefined;
       } else if (i === 0 && bin !== undefined) {
         data = bin;
         resources[GLB_BUFFER] = bin;
@@ -125,6 +135,7 @@ async function loadResources(json: Record<string, unknown>, bufferByteLengths: n
         failGltf(at, i === 0 ? 'the buffer has no uri and the file has no GLB BIN chunk' : 'only the first buffer may omit its uri (GLB BIN chunk)');
       }
       if (data.byteLength < bufferByteLengths[i]) failGltf(pointer('buffers', i, 'byteLength'), `declared ${bufferByteLengths[i]} bytes, the data has ${data.byteLength} (truncated)`);
+      return data;
     }),
   );
   const images = (Array.isArray(json.images) ? json.images : []) as Array<Record<string, unknown>>;
@@ -134,7 +145,16 @@ async function loadResources(json: Record<string, unknown>, bufferByteLengths: n
       resources[image.uri] = await readResource(image.uri, base, pointer('images', i), signal);
     }),
   );
-  return resources as JSONDocument['resources'];
+  return { resources: resources as JSONDocument['resources'], buffers };
+}
+
+/**
+ * A gltf-transform Document, recognised by shape rather than `instanceof`: the browser build
+ * carries its own copy of @gltf-transform/core, so an application's Document comes from another
+ * class object.
+ */
+function isDocument(source: GltfSource): source is Document {
+  return typeof source === 'object' && source !== null && !(source instanceof URL) && !ArrayBuffer.isView(source) && !(source instanceof ArrayBuffer) && typeof (source as Document).getRoot === 'function';
 }
 
 export async function readGltfDocument(
@@ -143,7 +163,7 @@ export async function readGltfDocument(
   options: { signal?: AbortSignal; decoders?: GltfDecoderModules } = {},
 ): Promise<ReadDocumentResult> {
   const { signal } = options;
-  if (source instanceof Document) return { document: source, json: undefined };
+  if (isDocument(source)) return { document: source, json: undefined };
   const { bytes, base } = await sourceBytes(source, signal);
   signal?.throwIfAborted();
   let rawJson: unknown;
@@ -173,8 +193,9 @@ export async function readGltfDocument(
     if (note !== undefined) warnings.push(`${name}: ${note}`);
   }
   preferFallbackSources(json, warnings);
-  const resources = await loadResources(json, bufferByteLengths, bin, base, signal);
+  const { resources, buffers } = await loadResources(json, bufferByteLengths, bin, base, signal);
   signal?.throwIfAborted();
+  validateSparseIndices(json, buffers);
 
   const dependencies: Record<string, unknown> = {};
   if (used.includes('KHR_draco_mesh_compression')) {
@@ -189,6 +210,8 @@ export async function readGltfDocument(
     return { document, json };
   } catch (error) {
     if (error instanceof GpuRendererError) throw error;
+    const fault = locateCompressionFault(json, buffers, { draco: dependencies['draco3d.decoder'], meshopt: dependencies['meshopt.decoder'] });
+    if (fault !== undefined) throw gltfError(fault.field, fault.message, error);
     throw gltfError(readerErrorPointer(error, used), `the glTF reader rejected the asset: ${(error as Error).message}`, error);
   }
 }

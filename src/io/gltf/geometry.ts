@@ -18,11 +18,23 @@ export interface PrimitiveGeometryOptions {
   weights: readonly number[];
   /** KHR_mesh_primitive_restart is in use: the largest index value restarts strips and fans. */
   primitiveRestart: boolean;
+  /** Notes about data left out (the caller prefixes the primitive's pointer). */
+  warn?: (message: string) => void;
 }
 
-function floatAttribute(primitive: Primitive, semantic: string, at: string): Float32Array | undefined {
+/** Components per element of the attributes the renderer reads (glTF 2.0 section 3.7.2.1). */
+const ATTRIBUTE_SIZES: Readonly<Record<string, readonly number[]>> = { POSITION: [3], NORMAL: [3], TANGENT: [4], TEXCOORD_0: [2], TEXCOORD_1: [2], COLOR_0: [3, 4] };
+
+/**
+ * The attribute as float32, checked: its element size (a Document passed in has not been through
+ * the JSON validation), its count against the primitive's vertex count, and finite components.
+ */
+function floatAttribute(primitive: Primitive, semantic: string, at: string, vertexCount: number): Float32Array | undefined {
   const accessor = primitive.getAttribute(semantic);
   if (accessor === null) return undefined;
+  const sizes = ATTRIBUTE_SIZES[semantic]!;
+  if (!sizes.includes(accessor.getElementSize())) failGltf(`${at}/attributes/${semantic}`, `${semantic} must have ${sizes.join(' or ')} components per element, the accessor has ${accessor.getElementSize()}`);
+  if (accessor.getCount() !== vertexCount) failGltf(`${at}/attributes/${semantic}`, `${accessor.getCount()} elements, the primitive's POSITION has ${vertexCount}`);
   const values = accessorToFloat32(accessor);
   const bad = firstNonFinite(values);
   if (bad >= 0) failGltf(`${at}/attributes/${semantic}`, `element ${Math.floor(bad / accessor.getElementSize())} has a non-finite component (${values[bad]})`);
@@ -35,6 +47,7 @@ function applyMorphTargets(primitive: Primitive, semantic: string, base: Float32
     const weight = options.weights[t] ?? 0;
     const accessor: Accessor | null = target.getAttribute(semantic);
     if (weight === 0 || accessor === null) return;
+    if (accessor.getCount() !== base.length / size) failGltf(`${options.at}/targets/${t}/${semantic}`, `${accessor.getCount()} elements, the primitive has ${base.length / size} vertices`);
     const delta = accessorToFloat32(accessor);
     const bad = firstNonFinite(delta);
     if (bad >= 0) failGltf(`${options.at}/targets/${t}/${semantic}`, `element ${Math.floor(bad / accessor.getElementSize())} has a non-finite component`);
@@ -66,12 +79,12 @@ export function primitiveGeometry(primitive: Primitive, options: PrimitiveGeomet
   const positionAccessor = primitive.getAttribute('POSITION');
   if (positionAccessor === null) return { skip: 'the primitive has no POSITION attribute' };
   const vertexCount = positionAccessor.getCount();
-  const positions = floatAttribute(primitive, 'POSITION', at) as Float32Array;
-  const normals = floatAttribute(primitive, 'NORMAL', at);
-  const tangents = floatAttribute(primitive, 'TANGENT', at);
-  const uvs = floatAttribute(primitive, 'TEXCOORD_0', at);
-  const uvs1 = floatAttribute(primitive, 'TEXCOORD_1', at);
-  const colors = floatAttribute(primitive, 'COLOR_0', at);
+  const positions = floatAttribute(primitive, 'POSITION', at, vertexCount) as Float32Array;
+  const normals = floatAttribute(primitive, 'NORMAL', at, vertexCount);
+  const tangents = floatAttribute(primitive, 'TANGENT', at, vertexCount);
+  const uvs = floatAttribute(primitive, 'TEXCOORD_0', at, vertexCount);
+  const uvs1 = floatAttribute(primitive, 'TEXCOORD_1', at, vertexCount);
+  const colors = floatAttribute(primitive, 'COLOR_0', at, vertexCount);
 
   if (options.weights.some((w) => w !== 0)) {
     applyMorphTargets(primitive, 'POSITION', positions, 3, options);
@@ -84,6 +97,8 @@ export function primitiveGeometry(primitive: Primitive, options: PrimitiveGeomet
   }
 
   const indexAccessor = primitive.getIndices();
+  const count = indexAccessor === null ? vertexCount : indexAccessor.getCount();
+  if (mode === MODE_TRIANGLES && count % 3 !== 0) options.warn?.(`${count} ${indexAccessor === null ? 'vertices' : 'indices'} are not whole triangles; the last ${count % 3} ignored`);
   let indices: Uint32Array;
   if (indexAccessor === null) {
     indices = toTriangleList(mode, sequentialIndices(vertexCount));

@@ -73,6 +73,8 @@ async function decodePng(bytes: Uint8Array): Promise<DecodedImage> {
     }
     return { image: { width, height, data: out }, notes };
   }
+  // The common case, 8-bit RGBA, is already the layout the renderer takes (tRNS never applies to it).
+  if (channels === 4 && depth === 8) return { image: { width, height, data: new Uint8Array(decoded.data.buffer, decoded.data.byteOffset, width * height * 4) }, notes };
   const samples = unpackSamples(decoded.data, width, height, channels, depth);
   const max = 2 ** depth - 1;
   if (depth === 16) notes.push('16-bit PNG reduced to 8 bits per channel');

@@ -162,6 +162,16 @@ function validateBufferView(entry: unknown, i: number, bufferByteLengths: number
     const stride = integer(m.byteStride, `${mat}/byteStride`, 1);
     const count = integer(m.count, `${mat}/count`, 1);
     if (stride * count > byteLength) failGltf(mat, `${count} elements of ${stride} bytes exceed the buffer view's ${byteLength} bytes`);
+    // EXT_meshopt_compression "Specifying compressed views": modes, filters and their strides.
+    if (m.mode !== 'ATTRIBUTES' && m.mode !== 'TRIANGLES' && m.mode !== 'INDICES') failGltf(`${mat}/mode`, `expected "ATTRIBUTES", "TRIANGLES" or "INDICES", got ${JSON.stringify(m.mode)}`);
+    if (m.mode === 'ATTRIBUTES' ? stride % 4 !== 0 || stride > 256 : stride !== 2 && stride !== 4) {
+      failGltf(`${mat}/byteStride`, `byteStride ${stride} is not valid for mode ${m.mode}`);
+    }
+    if (m.mode === 'TRIANGLES' && count % 3 !== 0) failGltf(`${mat}/count`, `a TRIANGLES view needs a multiple of 3 indices, got ${count}`);
+    if (m.filter !== undefined && !['NONE', 'OCTAHEDRAL', 'QUATERNION', 'EXPONENTIAL', 'COLOR'].includes(m.filter as string)) {
+      failGltf(`${mat}/filter`, `unknown filter ${JSON.stringify(m.filter)}`);
+    }
+    if (m.filter !== undefined && m.filter !== 'NONE' && m.mode !== 'ATTRIBUTES') failGltf(`${mat}/filter`, 'filters apply to ATTRIBUTES views only');
   }
 }
 

@@ -9,8 +9,19 @@ import type { VertexStreams } from './vertex-streams.ts';
 type GenerateTangents = (position: Float32Array, normal: Float32Array, texcoord: Float32Array) => Float32Array;
 let generator: Promise<GenerateTangents> | undefined;
 
+/**
+ * `mikktspace` as this module imports it. The npm package's builds are ready once imported; the
+ * package's browser build (dist/browser, scripts/browser-build) substitutes a module that runs the
+ * same WebAssembly from inlined bytes, which it compiles asynchronously in `ready()`.
+ */
+interface MikkTSpaceModule {
+  generateTangents: GenerateTangents;
+  ready?: () => Promise<void>;
+}
+
 async function loadGenerator(): Promise<GenerateTangents> {
-  const module = await import('mikktspace');
+  const module: MikkTSpaceModule = await import('mikktspace');
+  await module.ready?.();
   return module.generateTangents;
 }
 
@@ -37,23 +48,48 @@ function flatNormals(cornerPositions: Float32Array): Float32Array {
   return out;
 }
 
-/** Welds corners whose every attribute is bitwise equal; returns the unique vertices and indices. */
+/**
+ * Welds corners whose every attribute is bitwise equal: `remap` gives each corner its vertex,
+ * `unique` each vertex its first corner. An open-addressing hash table over the attributes' 32-bit
+ * words keeps this linear in time and free of per-corner allocations (million-triangle meshes).
+ */
 function weld(streams: Array<{ values: Float32Array; size: number }>, cornerCount: number): { remap: Uint32Array; unique: number[] } {
+  const words = streams.map((s) => ({ bits: new Uint32Array(s.values.buffer, s.values.byteOffset, s.values.length), size: s.size }));
+  const hash = (c: number): number => {
+    let h = 0x811c9dc5;
+    for (const { bits, size } of words) {
+      for (let k = 0; k < size; k++) h = Math.imul(h ^ bits[c * size + k]!, 0x01000193);
+    }
+    return (h ^ (h >>> 15)) >>> 0;
+  };
+  const same = (a: number, b: number): boolean => {
+    for (const { bits, size } of words) {
+      for (let k = 0; k < size; k++) if (bits[a * size + k] !== bits[b * size + k]) return false;
+    }
+    return true;
+  };
+  let capacity = 1;
+  while (capacity < 2 * cornerCount) capacity *= 2;
+  const mask = capacity - 1;
+  const table = new Int32Array(capacity).fill(-1); // vertex index, or -1 for an empty slot
   const remap = new Uint32Array(cornerCount);
   const unique: number[] = [];
-  const seen = new Map<string, number>();
-  const key: number[] = [];
   for (let c = 0; c < cornerCount; c++) {
-    key.length = 0;
-    for (const s of streams) for (let k = 0; k < s.size; k++) key.push(s.values[c * s.size + k]);
-    const text = key.join(',');
-    let index = seen.get(text);
-    if (index === undefined) {
-      index = unique.length;
-      seen.set(text, index);
-      unique.push(c);
+    let slot = hash(c) & mask;
+    for (;;) {
+      const vertex = table[slot]!;
+      if (vertex < 0) {
+        table[slot] = unique.length;
+        remap[c] = unique.length;
+        unique.push(c);
+        break;
+      }
+      if (same(c, unique[vertex]!)) {
+        remap[c] = vertex;
+        break;
+      }
+      slot = (slot + 1) & mask;
     }
-    remap[c] = index;
   }
   return { remap, unique };
 }

@@ -5,7 +5,7 @@
  */
 import { zlibSync } from 'fflate';
 import { GpuRendererError } from '../../errors/gpu-renderer-error.ts';
-import { wavefrontAovChannels, isWavefrontAovName, type WavefrontAovName } from '../aovs.ts';
+import { wavefrontAovChannels, wavefrontIntegerAovs, isWavefrontAovName, type WavefrontAovName } from '../aovs.ts';
 import { ByteWriter } from './byte-writer.ts';
 import { float32ToHalfBits } from './half-float.ts';
 import { requireLinearRgbaImage, type LinearRgbaImage } from './linear-image.ts';
@@ -35,7 +35,8 @@ export interface EncodeExrOptions {
   /**
    * Renderer AOVs, each width * height * k floats with k >= the AOV's channel count (so RGBA or
    * vec4 buffers can be passed as they are): albedo -> albedo.R/G/B, normal -> normal.X/Y/Z,
-   * depth -> depth.Z.
+   * depth -> depth.Z, objectId / materialId -> <name>.id, variance -> variance.R/G/B,
+   * sampleCount -> sampleCount.count (ids and counts always FLOAT).
    */
   aovs?: Partial<Record<WavefrontAovName, Float32Array>>;
   /** Further layers with caller-chosen names. */
@@ -87,7 +88,9 @@ function collectChannels(image: LinearRgbaImage, options: EncodeExrOptions, pixe
   for (const [aov, data] of Object.entries(options.aovs ?? {})) {
     if (data === undefined) continue;
     if (!isWavefrontAovName(aov)) fail(`aovs.${aov}`, `unknown AOV (expected one of ${Object.keys(wavefrontAovChannels).join(', ')})`);
-    sources.push(...layerSources(aov, wavefrontAovChannels[aov], data, pixelType, pixels, `aovs.${aov}`));
+    // Ids and counts stay exact: half floats hold integers only up to 2048.
+    const type = wavefrontIntegerAovs.includes(aov) ? 'float' : pixelType;
+    sources.push(...layerSources(aov, wavefrontAovChannels[aov], data, type, pixels, `aovs.${aov}`));
   }
   (options.layers ?? []).forEach((layer, i) => {
     const field = `layers[${i}]`;

@@ -170,3 +170,117 @@ test('JSON faults: syntax, references, attribute types and a node cycle', async 
   j.asset.version = '1.0';
   await bad(makeGlb(j, bin), '/asset/version');
 });
+
+/** `bin` with `extra` appended on a 4-byte boundary, and the offset it starts at. */
+function appendBin(bin: Uint8Array, extra: Uint8Array): { bin: Uint8Array; offset: number } {
+  const offset = Math.ceil(bin.length / 4) * 4;
+  const out = new Uint8Array(offset + extra.length);
+  out.set(bin);
+  out.set(extra, offset);
+  return { bin: out, offset };
+}
+
+test('GLB: a buffer without uri needs the BIN chunk; the JSON chunk must be UTF-8', async () => {
+  const { json, bin } = await quadAsset();
+  await bad(makeGlb(json), '/buffers/0', /no GLB BIN chunk/);
+  const glb = makeGlb(json, bin);
+  const notUtf8 = glb.slice();
+  notUtf8[21] = 0xff; // inside the JSON chunk payload
+  await bad(notUtf8, 'glb:/chunks/0', /UTF-8/);
+});
+
+test('external buffers: a missing .bin file and a truncated one', async () => {
+  const doc = new Document();
+  doc.createScene().addChild(doc.createNode('n').setMesh(quadMesh(doc, doc.createBuffer().setURI('geometry.bin'))));
+  const { json, resources } = await createIO().writeJSON(doc);
+  const dir = await mkdtemp(join(tmpdir(), 'gltf-buffers-'));
+  try {
+    await writeFile(join(dir, 'scene.gltf'), JSON.stringify(json));
+    await rejectsWith(loadGltfScene(join(dir, 'scene.gltf')), 'INVALID_GLTF', '/buffers/0', /cannot read "geometry.bin"/);
+    await writeFile(join(dir, 'geometry.bin'), resources['geometry.bin'].subarray(0, 20));
+    await rejectsWith(loadGltfScene(join(dir, 'scene.gltf')), 'INVALID_GLTF', '/buffers/0/byteLength', /declared \d+ bytes, the data has 20 \(truncated\)/);
+  } finally {
+    await rm(dir, { recursive: true, force: true });
+  }
+});
+
+test('missing images: no uri or bufferView, a texture source or a material texture index out of range', async () => {
+  const { json, bin } = await quadAsset();
+  const copy = (): GLTF.IGLTF => structuredClone(json);
+  let j = copy();
+  j.images = [{ mimeType: 'image/png' }];
+  await bad(makeGlb(j, bin), '/images/0', /needs a uri or a bufferView/);
+  j = copy();
+  j.images = [];
+  j.textures = [{ source: 0 }];
+  await bad(makeGlb(j, bin), '/textures/0/source', /images index 0 is out of range \(the asset has 0 images\)/);
+  j = copy();
+  j.materials = [{ pbrMetallicRoughness: { baseColorTexture: { index: 3 } } }];
+  j.meshes![0].primitives[0].material = 0;
+  await bad(makeGlb(j, bin), '/materials/0/pbrMetallicRoughness/baseColorTexture/index', /textures index 3/);
+  j = copy();
+  j.materials = [{ extensions: { KHR_materials_clearcoat: { clearcoatNormalTexture: { index: 0 } } } }];
+  await bad(makeGlb(j, bin), '/materials/0/extensions/KHR_materials_clearcoat/clearcoatNormalTexture/index');
+  // A Document whose image has no data (never loaded) fails the same way, naming the image.
+  const doc = new Document();
+  const tex = doc.createTexture('lost').setURI('lost.png');
+  doc.createScene().addChild(doc.createNode('n').setMesh(quadMesh(doc, doc.createBuffer(), doc.createMaterial().setBaseColorTexture(tex))));
+  await rejectsWith(loadGltfScene(doc), 'INVALID_GLTF', '/images/0', /no data \(lost.png\)/);
+});
+
+test('any unsupported required extension is refused, before anything is read', async () => {
+  const { json, bin } = await quadAsset();
+  json.extensionsUsed = ['KHR_mesh_quantization', 'EXT_made_up'];
+  json.extensionsRequired = ['KHR_mesh_quantization', 'EXT_made_up'];
+  await bad(makeGlb(json, bin), '/extensionsRequired/1', /EXT_made_up is not supported/);
+});
+
+test('indices: a float accessor, and a sparse accessor whose indices leave its range or do not increase', async () => {
+  const { json, bin } = await quadAsset();
+  const j: GLTF.IGLTF = structuredClone(json);
+  j.accessors![3].componentType = 5126;
+  j.accessors![3].count = 3;
+  await bad(makeGlb(j, bin), '/meshes/0/primitives/0/indices', /unsigned byte\/short\/int/);
+
+  // Accessor 0 (POSITION, 4 vertices) gets a sparse substitution of 2 elements.
+  const sparse = (indices: number[]): Uint8Array => {
+    const extra = new Uint8Array(4 * 2 + 24);
+    const view = new DataView(extra.buffer);
+    indices.forEach((v, i) => view.setUint32(4 * i, v, true));
+    for (let k = 0; k < 6; k++) view.setFloat32(8 + 4 * k, 0.5, true);
+    const appended = appendBin(bin, extra);
+    const out = structuredClone(json);
+    out.buffers![0].byteLength = appended.bin.length;
+    out.bufferViews!.push({ buffer: 0, byteOffset: appended.offset, byteLength: 8 }, { buffer: 0, byteOffset: appended.offset + 8, byteLength: 24 });
+    const views = out.bufferViews!.length;
+    out.accessors![0].sparse = { count: 2, indices: { bufferView: views - 2, componentType: 5125 }, values: { bufferView: views - 1 } };
+    return makeGlb(out, appended.bin);
+  };
+  const ok = await loadGltfScene(sparse([1, 3]));
+  assert.deepEqual(Array.from(ok.meshes[0].positions).slice(3, 6), [0.5, 0.5, 0.5], 'the substituted element');
+  await bad(sparse([1, 4]), '/accessors/0/sparse/indices', /sparse index 1 is 4, the accessor has 4 elements/);
+  await bad(sparse([3, 1]), '/accessors/0/sparse/indices', /strictly increase/);
+});
+
+test('a Document passed in is checked like a file: attribute sizes and counts, morph target counts', async () => {
+  const sized = new Document();
+  const b1 = sized.createBuffer();
+  const m1 = quadMesh(sized, b1);
+  m1.listPrimitives()[0].setAttribute('TEXCOORD_0', accessor(sized, b1, 'VEC3', new Float32Array(12)));
+  sized.createScene().addChild(sized.createNode('n').setMesh(m1));
+  await rejectsWith(loadGltfScene(sized), 'INVALID_GLTF', '/meshes/0/primitives/0/attributes/TEXCOORD_0', /2 components per element, the accessor has 3/);
+
+  const counted = new Document();
+  const b2 = counted.createBuffer();
+  const m2 = quadMesh(counted, b2);
+  m2.listPrimitives()[0].setAttribute('NORMAL', accessor(counted, b2, 'VEC3', new Float32Array([0, 0, 1, 0, 0, 1, 0, 0, 1])));
+  counted.createScene().addChild(counted.createNode('n').setMesh(m2));
+  await rejectsWith(loadGltfScene(counted), 'INVALID_GLTF', '/meshes/0/primitives/0/attributes/NORMAL', /3 elements, the primitive's POSITION has 4/);
+
+  const morphed = new Document();
+  const b3 = morphed.createBuffer();
+  const m3 = quadMesh(morphed, b3).setWeights([1]);
+  m3.listPrimitives()[0].addTarget(morphed.createPrimitiveTarget().setAttribute('NORMAL', accessor(morphed, b3, 'VEC3', new Float32Array(6))));
+  morphed.createScene().addChild(morphed.createNode('n').setMesh(m3));
+  await rejectsWith(loadGltfScene(morphed), 'INVALID_GLTF', '/meshes/0/primitives/0/targets/0/NORMAL', /2 elements, the primitive has 4 vertices/);
+});

@@ -1,11 +1,11 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { Document, Primitive } from '@gltf-transform/core';
-import { EXTMeshoptCompression, KHRDracoMeshCompression, KHRMeshQuantization } from '@gltf-transform/extensions';
+import { EXTMeshoptCompression, KHRAccessorFloat16, KHRAccessorFloat64, KHRDracoMeshCompression, KHRMeshPrimitiveRestart, KHRMeshQuantization } from '@gltf-transform/extensions';
 import { MeshoptEncoder } from 'meshoptimizer';
 import { loadGltfScene } from '../../../src/io/index.ts';
 import { toTriangleList } from '../../../src/io/gltf/topology.ts';
-import { accessor, assertClose, toGlb } from './helpers.ts';
+import { accessor, assertClose, rejectsWith, toGlb } from './helpers.ts';
 
 /** z component of the counter-clockwise normal of each triangle. */
 function triangleNormalZ(positions: ArrayLike<number>, indices: ArrayLike<number>): number[] {
@@ -55,9 +55,22 @@ test('strip, fan, non-indexed and point primitives in a file', async () => {
   assert.equal(f.indices!.length, 18);
   assert.ok(triangleNormalZ(f.positions, f.indices!).every((z) => z > 0), 'fan winding');
   assert.deepEqual(Array.from(l.indices!), [0, 1, 2], 'non-indexed list: sequential indices');
+  assert.ok(!scene.warnings.some((w) => w.startsWith('/meshes/0/primitives/4')), 'whole triangles: no warning');
   assert.equal(l.normals, undefined, 'no NORMAL: normals omitted (flat shading)');
   assert.ok(scene.warnings.some((w) => w.startsWith('/meshes/0/primitives/2: skipped') && /POINTS/.test(w)), scene.warnings.join('\n'));
   assert.ok(scene.warnings.some((w) => w.startsWith('/meshes/0/primitives/3: skipped') && /LINES/.test(w)));
+});
+
+test('a TRIANGLES primitive whose index count is not a multiple of 3 keeps its whole triangles, with a warning', async () => {
+  const doc = new Document();
+  const buffer = doc.createBuffer();
+  const primitive = doc.createPrimitive()
+    .setAttribute('POSITION', accessor(doc, buffer, 'VEC3', new Float32Array([0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0])))
+    .setIndices(accessor(doc, buffer, 'SCALAR', new Uint16Array([0, 1, 2, 0, 2, 3, 0, 1])));
+  doc.createScene().addChild(doc.createNode('n').setMesh(doc.createMesh().addPrimitive(primitive)));
+  const scene = await loadGltfScene(await toGlb(doc));
+  assert.deepEqual(Array.from(scene.meshes[0]!.indices!), [0, 1, 2, 0, 2, 3]);
+  assert.ok(scene.warnings.includes('/meshes/0/primitives/0: 8 indices are not whole triangles; the last 2 ignored'), scene.warnings.join('\n'));
 });
 
 test('KHR_mesh_quantization: integer positions, normalised normals, uvs and colours are dequantised', async () => {
@@ -185,4 +198,84 @@ test('EXT_meshopt_compression: a meshopt-encoded mesh decodes to the same data',
   assert.deepEqual(canonical(m.indices!), canonical(indices));
   // Normals go through an 8-bit octahedral filter.
   for (let i = 0; i < m.normals!.length; i += 3) assertClose(Array.from(m.normals!).slice(i, i + 3), [0, 0, 1], 0.02, `normal ${i / 3}`);
+});
+
+/** The GLB's BIN chunk payload, overwritten from `from` on with a pseudo-random byte pattern. */
+function scrambleBin(glb: Uint8Array, from = 0): Uint8Array {
+  const out = glb.slice();
+  const view = new DataView(out.buffer);
+  const binStart = 20 + view.getUint32(12, true) + 8;
+  for (let i = binStart + from; i < out.length; i++) out[i] = (i * 7919 + 13) & 255;
+  return out;
+}
+
+/** The GLB with its JSON chunk replaced by `edit(json)` (same length budget: re-laid out). */
+// eslint-disable-next-line @typescript-eslint/no-explicit-any -- free-form JSON surgery
+function editGlbJson(glb: Uint8Array, edit: (json: any) => void): Uint8Array {
+  const view = new DataView(glb.buffer, glb.byteOffset, glb.byteLength);
+  const jsonLength = view.getUint32(12, true);
+  const json = JSON.parse(new TextDecoder().decode(glb.subarray(20, 20 + jsonLength)));
+  edit(json);
+  const text = new TextEncoder().encode(JSON.stringify(json));
+  const padded = new Uint8Array(Math.ceil(text.length / 4) * 4).fill(0x20);
+  padded.set(text);
+  const rest = glb.subarray(20 + jsonLength);
+  const out = new Uint8Array(20 + padded.length + rest.length);
+  out.set(glb.subarray(0, 12));
+  const o = new DataView(out.buffer);
+  o.setUint32(8, out.length, true);
+  o.setUint32(12, padded.length, true);
+  o.setUint32(16, 0x4e4f534a, true);
+  out.set(padded, 20);
+  out.set(rest, 20 + padded.length);
+  return out;
+}
+
+test('corrupt compressed geometry names the Draco primitive or meshopt buffer view', async () => {
+  const specifier = 'draco3dgltf';
+  const draco3d = ((await import(specifier)) as { default: { createEncoderModule(): Promise<unknown> } }).default;
+  const dracoDoc = new Document();
+  dracoDoc.createScene().addChild(dracoDoc.createNode('d').setMesh(dracoDoc.createMesh().addPrimitive(gridPrimitive(dracoDoc).primitive)));
+  dracoDoc.createExtension(KHRDracoMeshCompression).setRequired(true);
+  const dracoGlb = await toGlb(dracoDoc, { 'draco3d.encoder': await draco3d.createEncoderModule() });
+  const at = '/meshes/0/primitives/0/extensions/KHR_draco_mesh_compression';
+  await rejectsWith(loadGltfScene(scrambleBin(dracoGlb)), 'INVALID_GLTF', at, /Draco data/);
+  const wrongId = editGlbJson(dracoGlb, (json) => (json.meshes[0].primitives[0].extensions.KHR_draco_mesh_compression.attributes.NORMAL = 17));
+  // The reader decodes an unknown attribute id to nothing; the element count check names it.
+  await rejectsWith(loadGltfScene(wrongId), 'INVALID_GLTF', '/meshes/0/primitives/0/attributes/NORMAL', /0 elements, the primitive's POSITION has 81/);
+
+  await MeshoptEncoder.ready;
+  const meshoptDoc = new Document();
+  meshoptDoc.createScene().addChild(meshoptDoc.createNode('m').setMesh(meshoptDoc.createMesh().addPrimitive(gridPrimitive(meshoptDoc).primitive)));
+  meshoptDoc.createExtension(EXTMeshoptCompression).setRequired(true);
+  const meshoptGlb = await toGlb(meshoptDoc, { 'meshopt.encoder': MeshoptEncoder });
+  await rejectsWith(loadGltfScene(scrambleBin(meshoptGlb)), 'INVALID_GLTF', '/bufferViews/0/extensions/EXT_meshopt_compression', /does not decode/);
+  const badMode = editGlbJson(meshoptGlb, (json) => (json.bufferViews[0].extensions.EXT_meshopt_compression.mode = 'POINTS'));
+  await rejectsWith(loadGltfScene(badMode), 'INVALID_GLTF', '/bufferViews/0/extensions/EXT_meshopt_compression/mode', /"POINTS"/);
+  const badFilter = editGlbJson(meshoptGlb, (json) => (json.bufferViews[0].extensions.EXT_meshopt_compression.filter = 'ZIGZAG'));
+  await rejectsWith(loadGltfScene(badFilter), 'INVALID_GLTF', '/bufferViews/0/extensions/EXT_meshopt_compression/filter', /"ZIGZAG"/);
+});
+
+test('KHR_accessor_float64 and _float16 positions, and KHR_mesh_primitive_restart strips, read as float32 triangle lists', async () => {
+  const doc = new Document();
+  doc.createExtension(KHRAccessorFloat64).setRequired(true);
+  doc.createExtension(KHRAccessorFloat16).setRequired(true);
+  doc.createExtension(KHRMeshPrimitiveRestart);
+  const buffer = doc.createBuffer();
+  // Two strips of two triangles each in one index buffer, split by the restart value 0xffff.
+  const strips = [0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0, 3, 0, 0, 4, 0, 0, 3, 1, 0, 4, 1, 0];
+  const wide = doc.createPrimitive()
+    .setMode(Primitive.Mode.TRIANGLE_STRIP)
+    .setAttribute('POSITION', doc.createAccessor().setType('VEC3').setArray(new Float64Array(strips)).setBuffer(buffer))
+    .setIndices(accessor(doc, buffer, 'SCALAR', new Uint16Array([0, 1, 2, 3, 0xffff, 4, 5, 6, 7])));
+  const half = doc.createPrimitive()
+    .setAttribute('POSITION', doc.createAccessor().setType('VEC3').setArray(new Float16Array([0, 0, 0, 0.5, 0, 0, 0, 0.25, 0]) as never).setBuffer(buffer));
+  doc.createScene().addChild(doc.createNode('n').setMesh(doc.createMesh().addPrimitive(wide).addPrimitive(half)));
+  const scene = await loadGltfScene(await toGlb(doc));
+  assert.deepEqual(scene.extensionsUsed.toSorted(), ['KHR_accessor_float16', 'KHR_accessor_float64', 'KHR_mesh_primitive_restart']);
+  const [a, b] = scene.meshes;
+  assert.ok(a!.positions instanceof Float32Array && b!.positions instanceof Float32Array);
+  assertClose(a!.positions, strips, 0, 'float64 positions');
+  assert.deepEqual(Array.from(a!.indices!), [0, 1, 2, 1, 3, 2, 4, 5, 6, 5, 7, 6], 'each strip starts afresh after the restart value');
+  assertClose(b!.positions, [0, 0, 0, 0.5, 0, 0, 0, 0.25, 0], 0, 'float16 positions');
 });

@@ -140,7 +140,7 @@ test('typed errors for bad options and data', () => {
   const isField = (field: string) => (e: unknown) => e instanceof GpuRendererError && e.code === 'INVALID_OPTION' && e.field === field;
   assert.throws(() => encodeExr(image, { compression: 'piz' as never }), isField('compression'));
   assert.throws(() => encodeExr(image, { pixelType: 'uint' as never }), isField('pixelType'));
-  assert.throws(() => encodeExr(image, { aovs: { emission: new Float32Array(12) } as never }), isField('aovs.emission'));
+  assert.throws(() => encodeExr(image, { aovs: { shadow: new Float32Array(12) } as never }), isField('aovs.shadow'));
   assert.throws(() => encodeExr(image, { aovs: { albedo: new Float32Array(8) } }), isField('aovs.albedo'));
   assert.throws(() => encodeExr(image, { aovs: { depth: new Float32Array(5) } }), isField('aovs.depth'));
   assert.throws(() => encodeExr(image, { layers: [{ name: 'caf\u00e9', channels: ['R'], data: new Float32Array(4) }] }), isField('layers[0].name'));

@@ -1,0 +1,287 @@
+/**
+ * `loadGltfScene`: a glTF 2.0 asset (.glb or .gltf) -> the renderer's scene description.
+ */
+import type { Document, Mesh, Node, Scene } from '@gltf-transform/core';
+import type { InstancedMesh, Light } from '@gltf-transform/extensions';
+import { GpuRendererError } from '../../errors/gpu-renderer-error.ts';
+import type {
+  WavefrontCameraInput,
+  WavefrontImageInput,
+  WavefrontInstanceInput,
+  WavefrontMaterialInput,
+  WavefrontMeshInput,
+  WavefrontPunctualLightInput,
+  WavefrontTextureInput,
+  WavefrontTextureRefInput,
+} from '../../scene/types.ts';
+import { accessorToFloat32 } from './accessors.ts';
+import { cameraFromNode, framingCamera, type GltfBounds, type GltfCameraInfo } from './cameras.ts';
+import { readGltfDocument, type GltfDecoderModules, type GltfSource } from './document-reader.ts';
+import { failGltf, pointer } from './errors.ts';
+import { primitiveGeometry } from './geometry.ts';
+import { worldLight } from './lights.ts';
+import { defaultGltfMaterial, mapMaterial } from './materials.ts';
+import { composeTrs, determinant3, multiply, transformPoint, type Mat4 } from './matrix.ts';
+import { flattenNodes } from './node-flattening.ts';
+import { withMikkTSpaceTangents } from './tangents.ts';
+import { TextureTable } from './textures.ts';
+import { listVariants, selectVariant, variantMaterial } from './variants.ts';
+import type { VertexStreams } from './vertex-streams.ts';
+
+export interface GltfLoadOptions {
+  /**
+   * The camera to render from: a glTF camera index (`/cameras/i`) or a name (a camera node's name,
+   * else a camera's name). Default: the first camera met in the scene's node order; without one, a
+   * camera framing the scene bounds (see `GltfScene.camera`).
+   */
+  camera?: number | string;
+  /** KHR_materials_variants variant name; an unknown name throws INVALID_OPTION (field `variant`). */
+  variant?: string;
+  /** The glTF scene (index or name); default the asset's default scene, else its first scene. */
+  scene?: number | string;
+  /** Aborts reading (file reads and fetches) and loading between stages. */
+  signal?: AbortSignal;
+  /** Decoder modules for KHR_draco_mesh_compression / EXT_meshopt_compression (loaded on demand in Node). */
+  decoders?: GltfDecoderModules;
+}
+
+/**
+ * A loaded glTF scene. Its own enumerable keys are exactly renderer scene keys, so
+ * `createWavefrontPathTracingComputeRenderer({ ...scene, width, height })` renders it; the
+ * metadata below are non-enumerable properties, left out by spreading.
+ *
+ * - Every glTF primitive the scene uses is one entry of `meshes` (its own material index); a glTF
+ *   mesh placed by several nodes (or EXT_mesh_gpu_instancing instances) stays one set of entries
+ *   with several `instances`, each carrying the node's world matrix (column-major).
+ * - `materials` holds one entry per glTF material, in asset order, plus the glTF default material
+ *   at the end when some primitive has none.
+ * - `camera` is the chosen glTF camera; its aspect ratio is the renderer's width / height (the glTF
+ *   aspectRatio is not used). Without a camera it frames the scene bounds: looking at their centre
+ *   from +Z with a 45 degree vertical field of view, at the distance where the bounding sphere fits.
+ */
+export interface GltfScene {
+  meshes: WavefrontMeshInput[];
+  instances: WavefrontInstanceInput[];
+  materials: WavefrontMaterialInput[];
+  textures: WavefrontTextureInput[];
+  images: WavefrontImageInput[];
+  camera: WavefrontCameraInput;
+  lights: WavefrontPunctualLightInput[];
+  /** Non-enumerable. Things skipped, converted or dropped (points and lines, 16-bit images, KTX2 textures, ...). */
+  readonly warnings: readonly string[];
+  /** Non-enumerable. Every camera placed in the scene, in node order. */
+  readonly cameras: readonly GltfCameraInfo[];
+  /** Non-enumerable. The asset's KHR_materials_variants names. */
+  readonly variants: readonly string[];
+  /** Non-enumerable. World-space bounds of the instanced geometry; undefined for an empty scene. */
+  readonly bounds: GltfBounds | undefined;
+  /** Non-enumerable. The asset's extensionsUsed. */
+  readonly extensionsUsed: readonly string[];
+  /** Non-enumerable. The @gltf-transform document the scene was built from. */
+  readonly document: Document;
+}
+
+interface MeshEntry {
+  index: number;
+  min: [number, number, number];
+  max: [number, number, number];
+}
+
+function optionError(field: string, message: string): GpuRendererError {
+  return new GpuRendererError('INVALID_OPTION', message, { field });
+}
+
+function indexMap<T>(items: readonly T[]): Map<T, number> {
+  return new Map(items.map((item, i) => [item, i]));
+}
+
+function pickScene(document: Document, choice: number | string | undefined, warnings: string[]): { roots: Node[]; scene: Scene | undefined } {
+  const root = document.getRoot();
+  const scenes = root.listScenes();
+  let scene: Scene | undefined;
+  if (typeof choice === 'number') {
+    scene = scenes[choice];
+    if (!Number.isInteger(choice) || scene === undefined) throw optionError('scene', `scene index ${choice} is out of range (the asset has ${scenes.length} scenes)`);
+  } else if (typeof choice === 'string') {
+    scene = scenes.find((s) => s.getName() === choice);
+    if (scene === undefined) throw optionError('scene', `no scene named ${JSON.stringify(choice)} (the asset has ${scenes.map((s) => JSON.stringify(s.getName())).join(', ') || 'none'})`);
+  } else {
+    scene = root.getDefaultScene() ?? scenes[0];
+  }
+  if (scene !== undefined) return { roots: scene.listChildren(), scene };
+  warnings.push('the asset has no scene; rendering every root node');
+  return { roots: root.listNodes().filter((n) => n.getParentNode() === null), scene: undefined };
+}
+
+/** UV set a material's tangent-space slots sample (normal, clearcoat normal, anisotropy), if any. */
+function tangentSpaceTexCoord(material: WavefrontMaterialInput): number | undefined {
+  const refs: Array<WavefrontTextureRefInput | undefined> = [material.normalTexture, material.clearcoatNormalTexture, material.anisotropyTexture];
+  const ref = refs.find((r) => r !== undefined);
+  if (ref === undefined) return material.anisotropyStrength !== undefined && material.anisotropyStrength !== 0 ? 0 : undefined;
+  return ref.transform?.texCoord ?? ref.texCoord ?? 0;
+}
+
+function localBounds(positions: Float32Array): { min: [number, number, number]; max: [number, number, number] } {
+  const min: [number, number, number] = [Infinity, Infinity, Infinity];
+  const max: [number, number, number] = [-Infinity, -Infinity, -Infinity];
+  for (let i = 0; i < positions.length; i += 3) {
+    for (let k = 0; k < 3; k++) {
+      min[k] = Math.min(min[k], positions[i + k]);
+      max[k] = Math.max(max[k], positions[i + k]);
+    }
+  }
+  return { min, max };
+}
+
+/** Per-instance local matrices of EXT_mesh_gpu_instancing (TRS per instance), or undefined. */
+function gpuInstances(node: Node, at: string): Mat4[] | undefined {
+  const instancing = node.getExtension<InstancedMesh>('EXT_mesh_gpu_instancing');
+  if (instancing === null) return undefined;
+  const read = (semantic: string, size: number): Float32Array | undefined => {
+    const accessor = instancing.getAttribute(semantic);
+    if (accessor === null) return undefined;
+    const values = accessorToFloat32(accessor);
+    if (values.some((v) => !Number.isFinite(v))) failGltf(`${at}/extensions/EXT_mesh_gpu_instancing/attributes/${semantic}`, 'non-finite instance data');
+    if (accessor.getElementSize() !== size) failGltf(`${at}/extensions/EXT_mesh_gpu_instancing/attributes/${semantic}`, `expected ${size} components per instance`);
+    return values;
+  };
+  const t = read('TRANSLATION', 3);
+  const r = read('ROTATION', 4);
+  const s = read('SCALE', 3);
+  const count = Math.max(t ? t.length / 3 : 0, r ? r.length / 4 : 0, s ? s.length / 3 : 0);
+  const out: Mat4[] = [];
+  for (let i = 0; i < count; i++) {
+    out.push(composeTrs(t ? t.subarray(i * 3, i * 3 + 3) : [0, 0, 0], r ? r.subarray(i * 4, i * 4 + 4) : [0, 0, 0, 1], s ? s.subarray(i * 3, i * 3 + 3) : [1, 1, 1]));
+  }
+  return out;
+}
+
+/** The body of `loadGltfScene` (load-gltf-scene.ts), loaded on its first call. */
+export async function readGltfScene(source: GltfSource, options: GltfLoadOptions = {}): Promise<GltfScene> {
+  const { signal } = options;
+  signal?.throwIfAborted();
+  const warnings: string[] = [];
+  const { document } = await readGltfDocument(source, warnings, { signal, decoders: options.decoders });
+  signal?.throwIfAborted();
+  const root = document.getRoot();
+  const extensionsUsed = root.listExtensionsUsed().map((e) => e.extensionName);
+  const primitiveRestart = extensionsUsed.includes('KHR_mesh_primitive_restart');
+  const nodeIndex = indexMap(root.listNodes());
+  const meshIndex = indexMap(root.listMeshes());
+  const cameraIndex = indexMap(root.listCameras());
+  const variant = selectVariant(document, options.variant);
+  const { roots } = pickScene(document, options.scene, warnings);
+  const flat = flattenNodes(roots, nodeIndex);
+
+  const table = new TextureTable(root.listTextures(), warnings);
+  const materials: WavefrontMaterialInput[] = [];
+  const gltfMaterials = root.listMaterials();
+  for (let i = 0; i < gltfMaterials.length; i++) materials.push(await mapMaterial(gltfMaterials[i], pointer('materials', i), table));
+  const materialIndex = indexMap(gltfMaterials);
+  let defaultMaterial: number | undefined;
+  signal?.throwIfAborted();
+
+  const meshes: WavefrontMeshInput[] = [];
+  const meshCache = new Map<string, MeshEntry[]>();
+  const meshEntries = async (mesh: Mesh, weights: readonly number[]): Promise<MeshEntry[]> => {
+    const m = meshIndex.get(mesh) ?? -1;
+    const key = `${m}|${weights.join(',')}`;
+    const cached = meshCache.get(key);
+    if (cached !== undefined) return cached;
+    const entries: MeshEntry[] = [];
+    const primitives = mesh.listPrimitives();
+    for (let p = 0; p < primitives.length; p++) {
+      const at = pointer('meshes', m, 'primitives', p);
+      const primitive = primitives[p];
+      const geometry = primitiveGeometry(primitive, { at, weights, primitiveRestart, warn: (message) => warnings.push(`${at}: ${message}`) });
+      if ('skip' in geometry) {
+        warnings.push(`${at}: skipped, ${geometry.skip}`);
+        continue;
+      }
+      const gltfMaterial = variantMaterial(primitive, variant);
+      let material: number;
+      if (gltfMaterial === null) material = defaultMaterial ??= materials.push(defaultGltfMaterial()) - 1;
+      else material = materialIndex.get(gltfMaterial) as number;
+      let streams: VertexStreams = geometry;
+      const texCoord = tangentSpaceTexCoord(materials[material]);
+      if (texCoord !== undefined && streams.tangents === undefined) {
+        if ((texCoord === 0 ? streams.uvs : streams.uvs1) === undefined) {
+          warnings.push(`${at}: no TEXCOORD_${texCoord} for MikkTSpace tangents; the normal map cannot be applied`);
+        } else {
+          if (streams.normals === undefined) warnings.push(`${at}: flat normals computed for MikkTSpace tangents (the primitive has no NORMAL)`);
+          streams = await withMikkTSpaceTangents(streams, texCoord);
+        }
+      }
+      const name = mesh.getName();
+      const entry: WavefrontMeshInput = { id: `${name === '' ? `mesh ${m}` : name}/${p}`, ...streams, material };
+      meshes.push(entry);
+      entries.push({ index: meshes.length - 1, ...localBounds(streams.positions) });
+    }
+    meshCache.set(key, entries);
+    return entries;
+  };
+
+  const instances: WavefrontInstanceInput[] = [];
+  const cameras: GltfCameraInfo[] = [];
+  const lights: WavefrontPunctualLightInput[] = [];
+  const boundsMin: [number, number, number] = [Infinity, Infinity, Infinity];
+  const boundsMax: [number, number, number] = [-Infinity, -Infinity, -Infinity];
+  for (const { node, index, world } of flat) {
+    const at = pointer('nodes', index);
+    const name = node.getName();
+    const mesh = node.getMesh();
+    if (mesh !== null) {
+      if (node.getSkin() !== null) warnings.push(`${at}: skinning is not applied; the mesh is drawn unposed at the node's transform`);
+      const nodeWeights = node.getWeights();
+      const entries = await meshEntries(mesh, nodeWeights.length > 0 ? nodeWeights : mesh.getWeights());
+      const locals = gpuInstances(node, at);
+      const transforms = locals === undefined ? [world] : locals.map((local) => multiply(world, local));
+      transforms.forEach((transform, k) => {
+        const det = determinant3(transform);
+        if (!Number.isFinite(det) || !transform.every(Number.isFinite)) failGltf(at, 'the world transform is not finite');
+        if (Math.abs(det) < 1e-30) {
+          warnings.push(`${at}${locals === undefined ? '' : ` instance ${k}`}: skipped, its world transform is singular (zero scale)`);
+          return;
+        }
+        for (const entry of entries) {
+          const id = `${name === '' ? `node ${index}` : name}${locals === undefined ? '' : `#${k}`}`;
+          instances.push({ id, mesh: entry.index, transform });
+          for (let c = 0; c < 8; c++) {
+            const corner = [c & 1 ? entry.max[0] : entry.min[0], c & 2 ? entry.max[1] : entry.min[1], c & 4 ? entry.max[2] : entry.min[2]];
+            const p = transformPoint(transform, corner);
+            for (let a = 0; a < 3; a++) {
+              boundsMin[a] = Math.min(boundsMin[a], p[a]);
+              boundsMax[a] = Math.max(boundsMax[a], p[a]);
+            }
+          }
+        }
+      });
+    }
+    const camera = node.getCamera();
+    if (camera !== null) {
+      const ci = cameraIndex.get(camera) ?? -1;
+      const fallback = name === '' ? `camera ${ci}` : name;
+      cameras.push({ name: camera.getName() === '' ? fallback : camera.getName(), cameraIndex: ci, nodeIndex: index, nodeName: name, camera: cameraFromNode(camera, world) });
+    }
+    const light = node.getExtension<Light>('KHR_lights_punctual');
+    if (light !== null) lights.push(worldLight(light, world));
+  }
+  const bounds: GltfBounds | undefined = instances.length === 0 ? undefined : { min: boundsMin, max: boundsMax };
+  const camera = chooseCamera(cameras, options.camera, bounds);
+  signal?.throwIfAborted();
+
+  const scene = { meshes, instances, materials, textures: table.textures, images: table.images, camera, lights };
+  const metadata = { warnings, cameras, variants: listVariants(document).map((v) => v.getName()), bounds, extensionsUsed, document };
+  for (const [key, value] of Object.entries(metadata)) Object.defineProperty(scene, key, { value, enumerable: false, writable: false, configurable: true });
+  return scene as GltfScene;
+}
+
+function chooseCamera(cameras: readonly GltfCameraInfo[], choice: number | string | undefined, bounds: GltfBounds | undefined): WavefrontCameraInput {
+  if (choice === undefined) return cameras[0]?.camera ?? framingCamera(bounds);
+  const found = typeof choice === 'number' ? cameras.find((c) => c.cameraIndex === choice) : (cameras.find((c) => c.nodeName === choice) ?? cameras.find((c) => c.name === choice));
+  if (found === undefined) {
+    const known = cameras.map((c) => `${c.cameraIndex} ${JSON.stringify(c.name)}`).join(', ');
+    throw optionError('camera', `no camera ${JSON.stringify(choice)} in the scene (cameras: ${known === '' ? 'none' : known})`);
+  }
+  return found.camera;
+}

@@ -1,0 +1,1 @@
+export { denoiseAtrousReference, demodulationMinAlbedo, unknownVariance, type AtrousDenoiseInput, type AtrousDenoiseSettings } from './atrous-reference.ts';
