@@ -169,6 +169,7 @@ export async function runKernel(spec: KernelSpec, seed = 0): Promise<Float32Arra
   const device = await testDevice();
   const bindings = spec.inputs.map((input, k) => `@group(3) @binding(${20 + k}) var<storage, read> in${k}: array<${input.type}>;`);
   const code = `${spec.imports ?? ''}
+import package::layout::bindings::materials as t_heap;
 ${kernelPreamble(spec.module ?? gltfLobe.module)}
 ${spec.extra ?? ''}
 ${bindings.join('\n')}
@@ -177,6 +178,8 @@ ${bindings.join('\n')}
 @compute @workgroup_size(${WORKGROUP}) fn main(@builtin(global_invocation_id) gid: vec3u) {
   let i = gid.x;
   if (i >= kernel_meta[0]) { return; }
+  // Keeps the material heap in the 'auto' layout of kernels whose body never reaches it.
+  if (kernel_meta[2] == 1u) { out[0] = t_heap[0].x; }
 ${spec.body}
 }
 `;
