@@ -137,13 +137,13 @@ export const MATERIAL_TABLES_OFFSET = 0;
 /**
  * Resolution of the albedo tables (materials/energy): cosine nodes mu_i = i / (n - 1) and
  * perceptual-roughness nodes r_j = j / (n - 1); dielectric tables add nodes over
- * x = (eta - 1) / (eta + 1) in [-1, 1].
+ * y = sign(x) sqrt(|x|), x = (eta - 1) / (eta + 1), in [-1, 1] (energy/albedo-tables.ts).
  */
 export const ENERGY_TABLE_MU_NODES = 32;
 export const ENERGY_TABLE_ROUGHNESS_NODES = 32;
 export const DIELECTRIC_TABLE_MU_NODES = 16;
 export const DIELECTRIC_TABLE_ROUGHNESS_NODES = 16;
-export const DIELECTRIC_TABLE_ETA_NODES = 17;
+export const DIELECTRIC_TABLE_ETA_NODES = 33;
 /** Sheen albedo table resolution (cosine x sheen roughness). */
 export const SHEEN_TABLE_NODES = 32;
 /** Spectral response table: RGB of one wavelength at SPECTRAL_TABLE_NODES nodes over [SPECTRAL_MIN_NM, SPECTRAL_MAX_NM]. */

@@ -47,20 +47,20 @@ export interface AlbedoTables {
 
 /** Node value of axis node i of n over [0, 1]. */
 export const unitNode = (i: number, n: number): number => i / (n - 1);
-/** Relative index of refraction of dielectric-table node k: y = sign(x) x^2 uniform in [-1, 1], eta = (1 + x) / (1 - x). */
+/** Relative index of refraction of dielectric-table node k: y = sign(x) sqrt(|x|) uniform in [-1, 1], eta = (1 + x) / (1 - x). */
 export function etaNode(k: number, n = DIELECTRIC_TABLE_ETA_NODES): number {
   const y = -1 + (2 * k) / (n - 1);
   if (y <= -1) return 0;
   if (y >= 1) return Infinity;
-  const x = Math.sign(y) * Math.sqrt(Math.abs(y));
+  const x = Math.sign(y) * y * y;
   return (1 + x) / (1 - x);
 }
 
-/** The dielectric tables' axis coordinate of a relative index: sign(x) x^2, x = (eta - 1) / (eta + 1) (eta = 0: -1, Infinity: 1). */
+/** The dielectric tables' axis coordinate of a relative index: sign(x) sqrt(|x|), x = (eta - 1) / (eta + 1) (eta = 0: -1, Infinity: 1). */
 export function etaAxis(eta: number): number {
   if (!Number.isFinite(eta)) return 1;
   const x = (eta - 1) / (eta + 1);
-  return Math.sign(x) * x * x;
+  return Math.sign(x) * Math.sqrt(Math.abs(x));
 }
 
 /** KHR_materials_clearcoat's fixed index of refraction. */
