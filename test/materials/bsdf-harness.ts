@@ -196,7 +196,7 @@ ${spec.body}
   const pass = encoder.beginComputePass();
   pass.setPipeline(pipeline);
   for (const g of [...new Set(used.map((b) => b.group))].sort()) {
-    const entries = used.filter((b) => b.group === g).map((b) => ({ binding: b.binding, resource: { buffer: b.name === 'materials' ? materialTablesBuffer(device) : resources[b.name]! } }));
+    const entries = used.filter((b) => b.group === g).map((b) => ({ binding: b.binding, resource: { buffer: b.name === 'materials' || b.name === 't_heap' ? materialTablesBuffer(device) : resources[b.name]! } }));
     pass.setBindGroup(g, device.createBindGroup({ layout: pipeline.getBindGroupLayout(g), entries }));
   }
   pass.dispatchWorkgroups(Math.ceil(spec.count / WORKGROUP));
