@@ -2,11 +2,11 @@
 // transmission tests (transmission-render.test.ts, gltf-materials-render.test.ts).
 import type { WavefrontMeshInput } from '../../src/scene/types.ts';
 
-/** Axis-aligned box [-1, 1]^2 x [z0, z1] with outward counter-clockwise faces. */
-export function box(z0: number, z1: number): { positions: number[]; indices: number[] } {
+/** Axis-aligned box [-h, h]^2 x [z0, z1] with outward counter-clockwise faces. */
+export function box(z0: number, z1: number, h = 1): { positions: number[]; indices: number[] } {
   const p = [
-    [-1, -1, z0], [1, -1, z0], [1, 1, z0], [-1, 1, z0],
-    [-1, -1, z1], [1, -1, z1], [1, 1, z1], [-1, 1, z1],
+    [-h, -h, z0], [h, -h, z0], [h, h, z0], [-h, h, z0],
+    [-h, -h, z1], [h, -h, z1], [h, h, z1], [-h, h, z1],
   ];
   const quads = [[4, 5, 6, 7], [1, 0, 3, 2], [0, 4, 7, 3], [5, 1, 2, 6], [3, 7, 6, 2], [0, 1, 5, 4]];
   return { positions: p.flat(), indices: quads.flatMap(([a, b, c, d]) => [a!, b!, c!, a!, c!, d!]) };

@@ -18,12 +18,13 @@ const size = 16;
 const E = [2, 3, 4];
 const camera = { type: 'orthographic' as const, position: [0, 0, 4], target: [0, 0, 0], up: [0, 1, 0], orthographicHeight: 1 };
 
-async function renderThrough(material: WavefrontMaterialInput, thickness: number, spp = 64): Promise<number[]> {
+async function renderThrough(material: WavefrontMaterialInput, thickness: number, spp = 64, inner?: { material: WavefrontMaterialInput; thickness: number }): Promise<number[]> {
   const device = await testDevice();
   const slab = box(-thickness / 2, thickness / 2);
+  const nested = inner ? [{ ...box(-inner.thickness / 2, inner.thickness / 2, 0.8), material: inner.material }] : [];
   const renderer = await createWavefrontPathTracingComputeRenderer({
     device, width: size, height: size, maxDepth: 24, samplesPerPixel: spp, seed: 3, camera,
-    meshes: [{ ...slab, material }, emitter(E)],
+    meshes: [{ ...slab, material }, ...nested, emitter(E)],
   });
   try {
     const stats = await renderer.renderFrame();
@@ -72,4 +73,21 @@ test('thin-walled (thicknessFactor 0): no refraction and no absorption, each fac
   const m = await renderThrough({ ...glass, ior: 1.5, thicknessFactor: 0, attenuationColor: [0.2, 0.2, 0.2], attenuationDistance: 0.1 }, 0.5);
   const t = slabTransmittance(1.5, 1);
   for (let c = 0; c < 3; c++) assert.ok(Math.abs(m[c]! - t * E[c]!) <= TOLERANCE * t * E[c]!, `channel ${c}: ${m[c]} vs ${t * E[c]!}`);
+});
+
+test('nested media: an index-matched absorbing solid inside a clear one absorbs over its own thickness only, with no Fresnel at the inner faces', async () => {
+  // Outer solid: clear glass 1.0 thick. Inner solid: same ior, absorbing, 0.4 thick. The medium stack
+  // makes the inner faces index-matched (relative ior 1: no reflection) and restores the outer
+  // medium (not vacuum) when the path leaves the inner one; a wrong stack would add reflections at
+  // the inner faces and a wrong index at the outer back face.
+  const color = [0.3, 0.6, 0.9];
+  const d = 0.4;
+  const m = await renderThrough({ ...glass, ior: 1.5, thicknessFactor: 1 }, 1, 64, {
+    material: { ...glass, ior: 1.5, thicknessFactor: d, attenuationColor: color, attenuationDistance: 1 },
+    thickness: d,
+  });
+  for (let c = 0; c < 3; c++) {
+    const t = slabTransmittance(1.5, color[c]! ** d);
+    assert.ok(Math.abs(m[c]! - t * E[c]!) <= TOLERANCE * t * E[c]!, `channel ${c}: ${m[c]} vs ${t * E[c]!}`);
+  }
 });
