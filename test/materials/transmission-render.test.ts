@@ -91,3 +91,12 @@ test('nested media: an index-matched absorbing solid inside a clear one absorbs 
     assert.ok(Math.abs(m[c]! - t * E[c]!) <= TOLERANCE * t * E[c]!, `channel ${c}: ${m[c]} vs ${t * E[c]!}`);
   }
 });
+
+test('KHR_materials_dispersion: a path through a dispersive slab carries one sampled wavelength whose RGB response averages back to the light colour', async () => {
+  // At normal incidence no wavelength is deviated and R barely depends on it (ior 1.5 +- 0.01 at
+  // dispersion 1), so the spectral estimate must converge to the non-dispersive closed form: the
+  // sampled wavelengths' RGB responses, divided by their pdf, must integrate to white.
+  const m = await renderThrough({ ...glass, ior: 1.5, thicknessFactor: 0.5, dispersion: 1 }, 0.5, 256);
+  const t = slabTransmittance(1.5, 1);
+  for (let c = 0; c < 3; c++) assert.ok(Math.abs(m[c]! - t * E[c]!) <= 0.02 * t * E[c]!, `channel ${c}: ${m[c]} vs ${t * E[c]!}`);
+});
