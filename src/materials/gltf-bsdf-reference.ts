@@ -198,7 +198,6 @@ const add3 = (a: Vec3, b: Vec3): Vec3 => [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
 const mul3 = (a: Vec3, b: Vec3): Vec3 => [a[0] * b[0], a[1] * b[1], a[2] * b[2]];
 const scale3 = (a: Vec3, k: number): Vec3 => [a[0] * k, a[1] * k, a[2] * k];
 const mix3 = (a: Vec3, b: Vec3, t: number): Vec3 => [a[0] + (b[0] - a[0]) * t, a[1] + (b[1] - a[1]) * t, a[2] + (b[2] - a[2]) * t];
-const mirror = (w: Vec3): Vec3 => [w[0], w[1], -w[2]];
 
 function alphasOf(m: GltfBsdfMaterial): Alphas {
   if (m.anisotropy !== undefined) return anisotropicAlphas(m.roughness, m.anisotropy);
