@@ -1,4 +1,5 @@
 import { fail, requireInteger, requireNumberInRange, requireVec } from '../errors/validate.ts';
+import { validateLightingOptions, type LightingConfig } from '../lighting/lighting-options.ts';
 import { maxRadiance } from '../scene/limits.ts';
 import type { WavefrontToneMapping } from '../scene/types.ts';
 import { normalizeWavefrontCamera, type WavefrontCamera } from './camera.ts';
@@ -22,6 +23,8 @@ export interface WavefrontPathTracingComputeConfig {
   exposure: number;
   /** Accumulate albedo, normal and depth AOVs of the first non-specular hit. */
   aovs: boolean;
+  /** Environment map or sky, punctual and area lights, portals, light sampler (src/lighting/lighting-options.ts). */
+  lighting: LightingConfig;
 }
 
 const toneMappings: readonly WavefrontToneMapping[] = ['neutral', 'aces', 'linear', 'agx'];
@@ -30,6 +33,8 @@ const toneMappings: readonly WavefrontToneMapping[] = ['neutral', 'aces', 'linea
 export const wavefrontOptionNames: ReadonlySet<string> = new Set<keyof WavefrontPathTracingOptions>([
   'width', 'height', 'maxDepth', 'samplesPerPixel', 'tileSize', 'seed', 'camera', 'meshes', 'instances', 'materials', 'textures',
   'images', 'sceneObjects', 'lights', 'environment', 'toneMapping', 'exposure', 'aovs', 'shaderSpecialization', 'canvas', 'device', 'powerPreference',
+  // Lighting (src/lighting/lighting-options.ts).
+  'environmentMap', 'environmentLighting', 'environmentPortals', 'environmentPortalMode', 'lightSampler',
 ]);
 
 /** Validates the non-geometry options; every error names its field. */
@@ -53,12 +58,10 @@ export function createWavefrontPathTracingComputeConfig(options: Partial<Wavefro
     c.forEach((v, i) => requireNumberInRange(v, `environment.color[${i}]`, { min: 0, max: maxRadiance }));
     environment = [c[0]!, c[1]!, c[2]!];
   }
-  if (options.lights !== undefined && (!Array.isArray(options.lights) || options.lights.length > 0)) {
-    fail('INVALID_OPTION', 'lights', 'punctual and area lights are not supported by this renderer version; use emissive meshes');
-  }
+  const lighting = validateLightingOptions(options, environment);
   const toneMapping = options.toneMapping ?? 'neutral';
   if (!toneMappings.includes(toneMapping)) fail('INVALID_OPTION', 'toneMapping', `expected one of ${toneMappings.join(', ')}`);
   const exposure = options.exposure === undefined ? 1 : requireNumberInRange(options.exposure, 'exposure', { min: 0 });
   if (options.aovs !== undefined && typeof options.aovs !== 'boolean') fail('INVALID_OPTION', 'aovs', 'expected a boolean');
-  return { width, height, maxDepth, samplesPerPixel, tileSize, seed, camera, environment, toneMapping, exposure, aovs: options.aovs ?? false };
+  return { width, height, maxDepth, samplesPerPixel, tileSize, seed, camera, environment, toneMapping, exposure, aovs: options.aovs ?? false, lighting };
 }

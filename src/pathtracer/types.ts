@@ -1,9 +1,15 @@
+import type { WavefrontLightingOptions, WavefrontSceneLightInput } from '../lighting/lighting-options.ts';
 import type { WavefrontCameraInput, WavefrontSceneDescription, WavefrontToneMapping } from '../scene/types.ts';
 
 export type CanvasTarget = HTMLCanvasElement | OffscreenCanvas | string;
 
-/** Renderer options: the scene (what a scene file or the glTF loader gives) plus render settings. */
-export interface WavefrontPathTracingOptions extends WavefrontSceneDescription {
+/**
+ * Renderer options: the scene (what a scene file or the glTF loader gives) plus render settings and
+ * the lighting options (environment map or sky, portals, light sampler).
+ */
+export interface WavefrontPathTracingOptions extends Omit<WavefrontSceneDescription, 'lights'>, WavefrontLightingOptions {
+  /** KHR_lights_punctual point, spot and directional lights, and rectangle, disk and sphere area lights. */
+  lights?: WavefrontSceneLightInput[];
   width: number;
   height: number;
   /** Scattering events per path (pbrt-v4 semantics), 1..32; default 8. */
