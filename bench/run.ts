@@ -170,6 +170,13 @@ if (options.pathTracer && existsSync(new URL('./pathtracer.ts', import.meta.url)
   };
 }
 
+// Lighting figures (bench/lighting.ts): this version only, in this process; BENCH_LIGHTING=0 skips them.
+if (options.pathTracer && process.env.BENCH_LIGHTING !== '0') {
+  const { runLightingBenchmark, printLightingBenchmark } = await import('./lighting.ts');
+  results.lighting = await runLightingBenchmark();
+  printLightingBenchmark(results.lighting as Awaited<ReturnType<typeof runLightingBenchmark>>);
+}
+
 results.totalSeconds = (performance.now() - began) / 1000;
 const outDir = new URL('./results/', import.meta.url);
 await mkdir(outDir, { recursive: true });

@@ -107,16 +107,23 @@ export function environmentTableSize(width: number, height: number, maxCells = I
 }
 
 /**
- * Builds the tables. With `maxTableCells` below the map's texel count the tables get coarser
+ * Builds the tables (`uniform`: sin(theta) weights only, i.e. uniform directions, for measuring
+ * what importance sampling gains). With `maxTableCells` below the map's texel count the tables get coarser
  * (environmentTableSize): table cell (I, J) covers texel columns [floor(I W / W_t), floor((I + 1) W
  * / W_t)) and the rows likewise, and weighs the mean filtered luminance of its texels times
  * sin(theta) at its own centre row. Sampling and pdf use the table's cells throughout, so they stay
  * consistent, and a cell weighs 0 only where the radiance is 0 over all of it.
  */
-export function buildEnvironmentSampler(map: EnvironmentMap, options: { maxTableCells?: number } = {}): EnvironmentSampler {
+export function buildEnvironmentSampler(map: EnvironmentMap, options: { maxTableCells?: number; uniform?: boolean } = {}): EnvironmentSampler {
   const [w, h] = environmentTableSize(map.width, map.height, options.maxTableCells);
-  const filtered = filteredTexelLuminance(map);
-  const cellLuminance = w === map.width && h === map.height ? filtered : blockMeans(filtered, map.width, map.height, w, h);
+  let cellLuminance: Float64Array;
+  if (options.uniform) {
+    // Uniform over the sphere (weights sin(theta) only): the baseline importance sampling is measured against.
+    cellLuminance = new Float64Array(w * h).fill(1);
+  } else {
+    const filtered = filteredTexelLuminance(map);
+    cellLuminance = w === map.width && h === map.height ? filtered : blockMeans(filtered, map.width, map.height, w, h);
+  }
   const weights = new Float64Array(w * h);
   const rowSums = new Float64Array(h);
   let total = 0;

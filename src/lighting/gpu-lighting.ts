@@ -172,10 +172,12 @@ export function buildGpuLighting(input: GpuLightingInput): GpuLighting {
     if (config.portals.length > 0) environmentMap = constantMap(config.environment.radiance);
     else uniformEnvironment = config.environment.radiance;
   }
-  const sampler = environmentMap ? buildEnvironmentSampler(environmentMap, { maxTableCells: MAX_ENVIRONMENT_TABLE_CELLS }) : null;
-  const mapUsable = sampler !== null && sampler.weightIntegral > 0;
+  const sampler = environmentMap ? buildEnvironmentSampler(environmentMap, { maxTableCells: MAX_ENVIRONMENT_TABLE_CELLS, uniform: config.environmentSampling === 'uniform' }) : null;
+  // The environment's power comes from its radiance, whichever tables sample it.
+  const radianceSampler = environmentMap && config.environmentSampling === 'uniform' ? buildEnvironmentSampler(environmentMap, { maxTableCells: MAX_ENVIRONMENT_TABLE_CELLS }) : sampler;
+  const mapUsable = radianceSampler !== null && radianceSampler.weightIntegral > 0;
   // Mean radiance over the sphere: integral of L d omega = 2 pi^2 x weightIntegral x intensity.
-  const environmentMeanLuminance = mapUsable ? (Math.PI / 2) * sampler.weightIntegral * environmentMap!.intensity : luminance(uniformEnvironment);
+  const environmentMeanLuminance = mapUsable ? (Math.PI / 2) * radianceSampler.weightIntegral * environmentMap!.intensity : luminance(uniformEnvironment);
   const portalsUsed = mapUsable && config.portals.length > 0;
 
   // Bounded and directional lights.

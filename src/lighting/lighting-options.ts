@@ -37,6 +37,11 @@ export interface WavefrontLightingOptions {
   environmentPortalMode?: EnvironmentPortalMode;
   /** 'auto' (default: the light tree above 8 bounded lights), 'tree' or 'power' (alias table by power). */
   lightSampler?: WavefrontLightSamplerMode;
+  /**
+   * How next-event estimation samples an environment map: 'importance' (default: in proportion to
+   * luminance x sin(theta)) or 'uniform' (uniform directions; unbiased too, for measuring the gain).
+   */
+  environmentSampling?: 'importance' | 'uniform';
 }
 
 /** The validated environment the path tracer lights with. */
@@ -52,6 +57,7 @@ export interface LightingConfig {
   portals: Portal[];
   portalMode: EnvironmentPortalMode;
   lightSampler: WavefrontLightSamplerMode;
+  environmentSampling: 'importance' | 'uniform';
 }
 
 const SAMPLER_MODES: readonly WavefrontLightSamplerMode[] = ['auto', 'tree', 'power'];
@@ -115,7 +121,9 @@ export function validateLightingOptions(
   const portalMode = validateEnvironmentPortalMode(options.environmentPortalMode, 'environmentPortalMode');
   const lightSampler = options.lightSampler ?? 'auto';
   if (!SAMPLER_MODES.includes(lightSampler)) fail('INVALID_OPTION', 'lightSampler', `expected one of ${SAMPLER_MODES.join(', ')}, got ${describe(lightSampler)}`);
-  return { environment, punctual: lights.punctual, area: lights.area, portals, portalMode, lightSampler };
+  const environmentSampling = options.environmentSampling ?? 'importance';
+  if (environmentSampling !== 'importance' && environmentSampling !== 'uniform') fail('INVALID_OPTION', 'environmentSampling', `expected 'importance' or 'uniform', got ${describe(environmentSampling)}`);
+  return { environment, punctual: lights.punctual, area: lights.area, portals, portalMode, lightSampler, environmentSampling };
 }
 
 /** `--env-rotation` and scene files give degrees; the option takes radians. */

@@ -34,7 +34,7 @@ export const wavefrontOptionNames: ReadonlySet<string> = new Set<keyof Wavefront
   'width', 'height', 'maxDepth', 'samplesPerPixel', 'tileSize', 'seed', 'camera', 'meshes', 'instances', 'materials', 'textures',
   'images', 'sceneObjects', 'lights', 'environment', 'toneMapping', 'exposure', 'aovs', 'shaderSpecialization', 'canvas', 'device', 'powerPreference',
   // Lighting (src/lighting/lighting-options.ts).
-  'environmentMap', 'environmentLighting', 'environmentPortals', 'environmentPortalMode', 'lightSampler',
+  'environmentMap', 'environmentLighting', 'environmentPortals', 'environmentPortalMode', 'lightSampler', 'environmentSampling',
 ]);
 
 /** Validates the non-geometry options; every error names its field. */

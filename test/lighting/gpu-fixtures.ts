@@ -29,7 +29,7 @@ export function testHdri(width = 64, height = 32, sunRadiance = 400): Environmen
   });
 }
 
-export const noLights: Omit<LightingConfig, 'environment'> = { punctual: [], area: [], portals: [], portalMode: 'guide', lightSampler: 'auto' };
+export const noLights: Omit<LightingConfig, 'environment'> = { punctual: [], area: [], portals: [], portalMode: 'guide', lightSampler: 'auto', environmentSampling: 'importance' };
 
 export function lightingFor(config: Partial<LightingConfig>, extra: Partial<GpuLightingInput> = {}): GpuLighting {
   return buildGpuLighting({
