@@ -18,7 +18,7 @@
 import { acquireGpuDevice } from '../src/gpu/acquire-device.ts';
 import { createWavefrontPathTracingComputeRenderer } from '../src/pathtracer/index.ts';
 import type { WavefrontPathTracingOptions } from '../src/pathtracer/types.ts';
-import type { WavefrontMeshInput } from '../src/scene/types.ts';
+import type { WavefrontMaterialInput, WavefrontMeshInput } from '../src/scene/types.ts';
 
 export interface LightingMeasurement {
   scene: string;
@@ -63,7 +63,7 @@ function rng(seed: number): () => number {
   };
 }
 
-const lambert = (c: number): WavefrontMeshInput['material'] => ({ baseColorFactor: [c, c, c, 1], metallicFactor: 0, roughnessFactor: 1, ior: 1 });
+const lambert = (c: number): WavefrontMaterialInput => ({ baseColorFactor: [c, c, c, 1], metallicFactor: 0, roughnessFactor: 1, ior: 1 });
 const floor = (half: number): WavefrontMeshInput => ({ positions: [-half, 0, -half, half, 0, -half, half, 0, half, -half, 0, half], indices: [0, 2, 1, 0, 3, 2], material: lambert(0.6) });
 
 /** An HDRI with a dim sky and a 2 x 2 texel sun of `sun` radiance (64 x 32 texels). */
