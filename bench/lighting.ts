@@ -12,10 +12,13 @@
  *
  * Variance: two renders with different seeds a, b give sum (a - b)^2 / 2 per pixel, an unbiased
  * estimate of the variance of one render's pixel; reported relative to the squared image mean.
- * Time: wall-clock of renderFrame with the pipelines already built (a warm-up frame first).
- * Equal-time gain = (variance x time) of the baseline over that of the method.
+ * Time: renderFrame with the pipelines already built (a warm-up frame first): on a CPU adapter
+ * (lavapipe) the CPU seconds of the driver's threads (cpu-clock.ts; far steadier than wall clock
+ * on a shared machine), else wall clock. Equal-time gain = (variance x time) of the baseline over
+ * that of the method.
  */
 import { acquireGpuDevice } from '../src/gpu/acquire-device.ts';
+import { cpuMark, isCpuAdapter, workerCpuSeconds } from './cpu-clock.ts';
 import { createWavefrontPathTracingComputeRenderer } from '../src/pathtracer/index.ts';
 import type { WavefrontPathTracingOptions } from '../src/pathtracer/types.ts';
 import type { WavefrontMaterialInput, WavefrontMeshInput } from '../src/scene/types.ts';
@@ -28,6 +31,8 @@ export interface LightingMeasurement {
   relativeVariance: number;
   /** Wall-clock ms of one renderFrame at `spp` (pipelines warm). */
   frameMs: number;
+  /** CPU ms of the driver's threads during that frame (the work, on a CPU adapter). */
+  frameCpuMs: number;
   /** ms to create the renderer (validation, BVH, lights heap and tree, pipelines). */
   createMs: number;
 }
@@ -44,6 +49,8 @@ export interface LightingComparison {
 
 export interface LightingBenchmark {
   adapter: string;
+  /** Which time the equal-time gains use. */
+  time: 'worker CPU' | 'wall clock';
   size: number;
   measurements: LightingMeasurement[];
   comparisons: LightingComparison[];
@@ -122,6 +129,7 @@ function room(): WavefrontMeshInput {
 async function measure(device: GPUDevice, scene: string, method: string, options: Partial<WavefrontPathTracingOptions>): Promise<LightingMeasurement> {
   const images: Float32Array[] = [];
   let frameMs = 0;
+  let frameCpuMs = 0;
   let createMs = 0;
   for (const seed of [1, 2]) {
     const t0 = performance.now();
@@ -130,9 +138,11 @@ async function measure(device: GPUDevice, scene: string, method: string, options
     try {
       await renderer.renderFrame({ samplesPerPixel: 1 });
       await renderer.readRadiance();
+      const mark = cpuMark();
       const t1 = performance.now();
       await renderer.renderFrame({ samplesPerPixel: SPP });
       frameMs += (performance.now() - t1) / 2;
+      frameCpuMs += (workerCpuSeconds(mark, cpuMark()) * 1000) / 2;
       images.push((await renderer.readRadiance()).data);
     } finally {
       renderer.destroy();
@@ -149,16 +159,17 @@ async function measure(device: GPUDevice, scene: string, method: string, options
   }
   const n = 3 * SIZE * SIZE;
   mean /= n;
-  return { scene, method, spp: SPP + 1, relativeVariance: diff / n / (mean * mean), frameMs, createMs };
+  return { scene, method, spp: SPP + 1, relativeVariance: diff / n / (mean * mean), frameMs, frameCpuMs, createMs };
 }
 
-function compare(rows: LightingMeasurement[], scene: string, baseline: string, method: string): LightingComparison {
+function compare(rows: LightingMeasurement[], scene: string, baseline: string, method: string, cpu: boolean): LightingComparison {
   const b = rows.find((r) => r.scene === scene && r.method === baseline)!;
   const m = rows.find((r) => r.scene === scene && r.method === method)!;
+  const time = (r: LightingMeasurement): number => (cpu ? r.frameCpuMs : r.frameMs);
   return {
     scene, baseline, method,
     equalSamples: b.relativeVariance / m.relativeVariance,
-    equalTime: (b.relativeVariance * b.frameMs) / (m.relativeVariance * m.frameMs),
+    equalTime: (b.relativeVariance * time(b)) / (m.relativeVariance * time(m)),
   };
 }
 
@@ -193,24 +204,26 @@ export async function runLightingBenchmark(): Promise<LightingBenchmark> {
   } finally {
     if (acquired.ownsDevice) device.destroy();
   }
+  const cpu = isCpuAdapter(acquired.adapterDescription);
   return {
     adapter: acquired.adapterDescription,
+    time: cpu ? 'worker CPU' : 'wall clock',
     size: SIZE,
     measurements: rows,
     comparisons: [
-      compare(rows, 'HDRI with a small sun', 'uniform directions', 'importance sampling'),
-      compare(rows, 'emitters', '8 triangles', '10,000 triangles, light tree'),
-      compare(rows, 'emitters', '10,000 triangles, power table', '10,000 triangles, light tree'),
-      compare(rows, 'room through a window', 'no portal', 'portal (guide)'),
+      compare(rows, 'HDRI with a small sun', 'uniform directions', 'importance sampling', cpu),
+      compare(rows, 'emitters', '8 triangles', '10,000 triangles, light tree', cpu),
+      compare(rows, 'emitters', '10,000 triangles, power table', '10,000 triangles, light tree', cpu),
+      compare(rows, 'room through a window', 'no portal', 'portal (guide)', cpu),
     ],
   };
 }
 
 export function printLightingBenchmark(b: LightingBenchmark): void {
-  console.log(`\nLighting (${b.size}x${b.size}, ${b.measurements[0]?.spp ?? '?'} spp, two seeds per row; adapter ${b.adapter})`);
+  console.log(`\nLighting (${b.size}x${b.size}, ${b.measurements[0]?.spp ?? '?'} spp, two seeds per row; equal time by ${b.time}; adapter ${b.adapter})`);
   console.table(
     b.measurements.map((m) => ({
-      scene: m.scene, method: m.method, 'relative variance': Number(m.relativeVariance.toPrecision(3)), 'frame ms': Math.round(m.frameMs), 'create ms': Math.round(m.createMs),
+      scene: m.scene, method: m.method, 'relative variance': Number(m.relativeVariance.toPrecision(3)), 'frame ms': Math.round(m.frameMs), 'frame CPU ms': Math.round(m.frameCpuMs), 'create ms': Math.round(m.createMs),
     })),
   );
   console.table(
