@@ -3,6 +3,7 @@ import { allocateStructArray, writeStruct } from '../gpu-layout/struct-layout.ts
 import { cross, dot, length, normalize, scale, sub, type Vec3 } from './vec3.ts';
 import { AREA_LIGHT_RECTANGLE, AREA_LIGHT_DISK, AREA_LIGHT_SPHERE, AREA_LIGHT_FLAG_TWO_SIDED } from '../gpu-layout/constants.ts';
 import { areaLightLayout } from '../gpu-layout/records.ts';
+import { requireKnownKeys } from './known-keys.ts';
 
 export { AREA_LIGHT_RECTANGLE, AREA_LIGHT_DISK, AREA_LIGHT_SPHERE, AREA_LIGHT_FLAG_TWO_SIDED };
 export { areaLightLayout };
@@ -49,6 +50,7 @@ function tangentFrame(n: Vec3): { t: Vec3; b: Vec3 } {
 export function validateAreaLight(input: unknown, field = 'light'): AreaLight {
   if (typeof input !== 'object' || input === null) fail(CODE, field, `expected an object, got ${describe(input)}`);
   const l = input as Record<string, unknown>;
+  requireKnownKeys(l, ['type', 'name', 'emission', 'intensity', 'twoSided', 'center', 'edgeU', 'edgeV', 'normal', 'radius'], field, CODE);
   const type = l.type;
   if (type !== 'rectangle' && type !== 'disk' && type !== 'sphere') fail(CODE, `${field}.type`, `expected 'rectangle', 'disk' or 'sphere', got ${describe(type)}`);
   const emission = l.emission === undefined ? [1, 1, 1] : requireVec(l.emission, 3, `${field}.emission`, CODE);

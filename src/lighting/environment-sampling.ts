@@ -21,7 +21,8 @@ import { luminance, type Vec3 } from './vec3.ts';
  * uniform residual of each random number, which places the sample inside its texel: two numbers
  * per sample in all.
  *
- * GPU table (`entries`, one storage buffer, `array<EnvironmentAliasEntry>`, 12-byte stride):
+ * Table (`entries`, EnvironmentAliasEntry records of 12 bytes; gpu-lighting.ts copies each into an
+ * EnvironmentTableEntry cell of the lights heap, read by environment-map.wesl):
  *   records [0, H): marginal over rows: { threshold: f32, alias: u32 (a row), pdf: f32 (the row's pmf) }
  *   records [H + j W, H + (j + 1) W): row j's conditional over columns:
  *     { threshold: f32, alias: u32 (a column of row j), pdf: f32 (pdf_uv of texel (i, j), i = this record's own column) }
@@ -29,8 +30,8 @@ import { luminance, type Vec3 } from './vec3.ts';
  *   density is pdf_uv / (2 pi^2 sin(theta)). Rows that weigh 0 get threshold 1 (never reached).
  * Radiance: the map's RGBA float32 texels (row-major, row 0 = zenith) in an rgba32float texture
  * read with textureLoad and filtered by hand (rgba32float is not filterable without the optional
- * 'float32-filterable' feature; rgba16float would clip HDR suns above 65504), or a storage buffer.
- * Uniforms: width, height, intensity, rotationRadians / (2 pi).
+ * 'float32-filterable' feature; rgba16float would clip HDR suns above 65504).
+ * Uniforms: LightingUniforms (map and table sizes, intensity, rotationRadians / (2 pi)).
  */
 
 /** One alias-table bin as the GPU reads it. */

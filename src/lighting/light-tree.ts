@@ -23,11 +23,11 @@ export { lightTreeNodeLayout };
  * - pmf of a given light (MIS): walk from its leaf to the root through the parent links,
  *   multiplying importance(node) / (importance(left) + importance(right)) of every ancestor.
  *
- * GPU layout: `nodes`, `array<LightTreeNode>` (64 bytes each, depth-first: the first child of an
- * interior node is the next record), plus `lightToLeaf`, `array<u32>` (light index -> node index,
- * 0xffffffff for lights not in the tree). Light indices are the caller's (light-sampler.ts uses
- * [emissive triangles | area lights | punctual lights]).
- * WGSL port: both walks are plain loops over node indices; sampling needs no stack.
+ * GPU layout: LightTreeNode records (64 bytes each, depth-first: the first child of an interior
+ * node is the next record) in the lights heap, and each light's leaf (`lightToLeaf`, light index ->
+ * node index, 0xffffffff for lights not in the tree) in its LightSelectionEntry. Light indices are
+ * the caller's (light-sampler.ts and gpu-lighting.ts use [emissive triangles | area lights | point
+ * and spot lights]). The WGSL port (light-tree.wesl): both walks are plain loops over node indices.
  */
 
 export const LIGHT_TREE_NONE = 0xffffffff;

@@ -5,6 +5,7 @@ import { environmentRadiance } from './environment-map.ts';
 import { environmentPdf, sampleEnvironment, type EnvironmentSampler } from './environment-sampling.ts';
 import { add, cross, dot, length, luminance, normalize, scale, sub, type Vec3 } from './vec3.ts';
 import { environmentPortalLayout } from '../gpu-layout/records.ts';
+import { requireKnownKeys } from './known-keys.ts';
 
 export { environmentPortalLayout };
 
@@ -71,6 +72,7 @@ export function validateEnvironmentPortals(input: unknown, field = 'environmentP
     const f = `${field}[${i}]`;
     if (typeof p !== 'object' || p === null) fail(CODE, f, `expected an object, got ${describe(p)}`);
     const v = p as Record<string, unknown>;
+    requireKnownKeys(v, ['center', 'edgeU', 'edgeV'], f, CODE);
     const center = requireVec(v.center, 3, `${f}.center`, CODE) as Vec3;
     const edgeU = requireVec(v.edgeU, 3, `${f}.edgeU`, CODE) as Vec3;
     const edgeV = requireVec(v.edgeV, 3, `${f}.edgeV`, CODE) as Vec3;

@@ -4,6 +4,7 @@ import type { WavefrontPunctualLightInput } from '../scene/types.ts';
 import { dot, length, normalize, scale, sub, type Vec3 } from './vec3.ts';
 import { PUNCTUAL_LIGHT_POINT, PUNCTUAL_LIGHT_SPOT, PUNCTUAL_LIGHT_DIRECTIONAL } from '../gpu-layout/constants.ts';
 import { punctualLightLayout } from '../gpu-layout/records.ts';
+import { requireKnownKeys } from './known-keys.ts';
 
 export { PUNCTUAL_LIGHT_POINT, PUNCTUAL_LIGHT_SPOT, PUNCTUAL_LIGHT_DIRECTIONAL };
 export { punctualLightLayout };
@@ -55,6 +56,7 @@ function unitVec3(value: unknown, field: string): Vec3 {
 export function validatePunctualLight(input: unknown, field = 'light'): PunctualLight {
   if (typeof input !== 'object' || input === null) fail(CODE, field, `expected an object, got ${describe(input)}`);
   const l = input as WavefrontPunctualLightInput & Record<string, unknown>;
+  requireKnownKeys(l, ['type', 'name', 'color', 'intensity', 'range', 'position', 'direction', 'innerConeAngle', 'outerConeAngle'], field, CODE);
   const type = l.type;
   if (type !== 'point' && type !== 'spot' && type !== 'directional') fail(CODE, `${field}.type`, `expected 'point', 'spot' or 'directional', got ${describe(type)}`);
   const color = l.color === undefined ? [1, 1, 1] : nonNegativeVec3(l.color, `${field}.color`);

@@ -71,6 +71,14 @@ test('portals, portal mode and light sampler', async () => {
   await expectError({ lightSampler: 'bvh' }, 'INVALID_OPTION', 'lightSampler');
 });
 
+test('misspelt keys are errors naming them, never ignored', async () => {
+  await expectError({ environmentMap: { width: 1, height: 1, data: new Float32Array(4), rotation: 1 } }, 'INVALID_ENVIRONMENT', 'environmentMap.rotation');
+  await expectError({ environmentLighting: { sunlitBaseline: 0.2 } }, 'INVALID_ENVIRONMENT', 'environmentLighting.sunlitBaseline');
+  await expectError({ lights: [{ type: 'spot', position: [0, 1, 0], direction: [0, -1, 0], coneAngle: 0.5 }] }, 'INVALID_LIGHT', 'lights[0].coneAngle');
+  await expectError({ lights: [{ type: 'sphere', center: [0, 1, 0], radius: 1, doubleSided: true }] }, 'INVALID_LIGHT', 'lights[0].doubleSided');
+  await expectError({ environment: { color: [1, 1, 1] }, environmentPortals: [{ center: [0, 1, 0], edgeU: [1, 0, 0], edgeV: [0, 1, 0], size: 2 }] }, 'INVALID_ENVIRONMENT', 'environmentPortals[0].size');
+});
+
 test('after rejected lighting input the shared device renders lit scenes', async () => {
   const device = await testDevice();
   const renderer = await createWavefrontPathTracingComputeRenderer({
