@@ -9,6 +9,8 @@
  *   --gltf-only      | BENCH_ONLY=gltf      run the glTF benchmark alone
  *   --no-raster      | BENCH_RASTER=0       skip the raster renderer benchmark
  *   --raster-only    | BENCH_ONLY=raster    run the raster renderer benchmark alone
+ *   --no-lighting    | BENCH_LIGHTING=0     skip the lighting benchmark (environment sampling, light tree, portals)
+ *   --lighting-only  | BENCH_ONLY=lighting  run the lighting benchmark alone
  *   --output         | BENCH_OUTPUT=1       add the production-output benchmark (off by default: minutes)
  *   --output-only    | BENCH_ONLY=output    run the production-output benchmark alone
  * The command line wins over the environment. BENCH_SPP is read by the path tracer harnesses.
@@ -29,6 +31,8 @@ export interface BenchOptions {
   /** Run the glTF benchmark (bench/gltf.ts). */
   gltf: boolean;
   raster: boolean;
+  /** The lighting benchmark (bench/lighting.ts). */
+  lighting: boolean;
   /** The production-output benchmark: opt-in. */
   output: boolean;
   /** Run the path tracer comparison (off with --bvh-only / --gltf-only). */
@@ -74,6 +78,8 @@ export function parseBenchOptions(
       'gltf-only': { type: 'boolean' },
       'no-raster': { type: 'boolean' },
       'raster-only': { type: 'boolean' },
+      'no-lighting': { type: 'boolean' },
+      'lighting-only': { type: 'boolean' },
       output: { type: 'boolean' },
       'no-output': { type: 'boolean' },
       'output-only': { type: 'boolean' },
@@ -93,7 +99,7 @@ export function parseBenchOptions(
   const roundsText = values.rounds ?? env.BENCH_ROUNDS;
   const rounds = roundsText === undefined || roundsText === '' ? DEFAULT_ROUNDS : positiveInteger(roundsText, values.rounds !== undefined ? '--rounds' : 'BENCH_ROUNDS');
   // One part alone: --x-only on the command line, else BENCH_ONLY=x.
-  const parts = ['bvh', 'gltf', 'raster', 'output'] as const;
+  const parts = ['bvh', 'gltf', 'raster', 'lighting', 'output'] as const;
   const flagged = parts.filter((p) => values[`${p}-only`] === true);
   if (flagged.length > 1) throw new Error(`--${flagged[0]}-only and --${flagged[1]}-only exclude each other`);
   const fromEnv = parts.find((p) => env.BENCH_ONLY?.toLowerCase() === p);
@@ -106,7 +112,8 @@ export function parseBenchOptions(
   const bvh = on('bvh', env.BENCH_BVH);
   const gltf = on('gltf', env.BENCH_GLTF);
   const raster = on('raster', env.BENCH_RASTER);
+  const lighting = on('lighting', env.BENCH_LIGHTING);
   const outputOn = !values['no-output'] && (values.output === true || (env.BENCH_OUTPUT !== undefined && !off(env.BENCH_OUTPUT)));
   const output = only === 'output' || (only === null && outputOn);
-  return { baseline, rounds, bvh, gltf, raster, output, pathTracer: only === null };
+  return { baseline, rounds, bvh, gltf, raster, lighting, output, pathTracer: only === null };
 }

@@ -44,7 +44,7 @@ let options: BenchOptions;
 try {
   options = parseBenchOptions(process.argv.slice(2), process.env, await readBaselineFile());
 } catch (error) {
-  console.error(`bench: ${(error as Error).message}\nusage: npm run bench -- [--baseline <ref> | --no-baseline] [--rounds <n>] [--no-bvh | --bvh-only] [--no-gltf | --gltf-only] [--no-raster | --raster-only] [--output | --output-only]`);
+  console.error(`bench: ${(error as Error).message}\nusage: npm run bench -- [--baseline <ref> | --no-baseline] [--rounds <n>] [--no-bvh | --bvh-only] [--no-gltf | --gltf-only] [--no-raster | --raster-only] [--no-lighting | --lighting-only] [--output | --output-only]`);
   process.exit(2);
 }
 
@@ -204,6 +204,14 @@ if (options.output) {
   const { runOutputBenchmark } = await import('./output.ts');
   console.log('\nProduction output: adaptive sampling at equal time, denoising');
   results.output = await runOutputBenchmark();
+}
+
+// Lighting figures (bench/lighting.ts: environment importance sampling, many emitters, portals):
+// this version only, in this process; off with --no-lighting / BENCH_LIGHTING=0 or another --x-only.
+if (options.lighting) {
+  const { runLightingBenchmark, printLightingBenchmark } = await import('./lighting.ts');
+  results.lighting = await runLightingBenchmark();
+  printLightingBenchmark(results.lighting as Awaited<ReturnType<typeof runLightingBenchmark>>);
 }
 
 results.totalSeconds = (performance.now() - began) / 1000;

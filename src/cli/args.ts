@@ -40,6 +40,12 @@ export interface RenderCommand {
   denoise: boolean;
   /** OpenEXR pixel type (--half: half floats, else float). */
   half: boolean;
+  /** Environment map file (.hdr or .exr) lighting the scene (`--env`). */
+  env?: string;
+  /** Multiplies the environment map's radiance (`--env-intensity`). */
+  envIntensity?: number;
+  /** Rotation of the environment map about +Y in degrees (`--env-rotation`). */
+  envRotationDegrees?: number;
 }
 
 export interface HelpCommand {
@@ -93,6 +99,10 @@ Options:
   --denoise                denoise (edge-avoiding a-trous on the GPU); an .exr keeps the raw
                            beauty as layer raw.R/G/B
   --half                   .exr only: half-float channels (ids and counts stay float)
+  --env <file>             environment map lighting the scene: Radiance .hdr or OpenEXR,
+                           equirectangular, top row = +Y (replaces the scene's environment)
+  --env-intensity <x>      multiplies the environment map's radiance (default 1)
+  --env-rotation <deg>     rotates the environment map about +Y (default 0)
   --camera <name>          glTF: render from the camera (node or camera) of that name
                            (default the scene's first camera, else one framing the scene)
   --variant <name>         glTF: KHR_materials_variants variant to render
@@ -107,6 +117,12 @@ function integer(flag: string, text: string, min: number, max: number): number {
   if (!/^[+]?\d+$/.test(text)) invalid(flag, `expected an integer, got ${JSON.stringify(text)}`);
   const n = Number(text);
   if (n < min || n > max) invalid(flag, `must be between ${min} and ${max}, got ${n}`);
+  return n;
+}
+
+function finiteNumber(flag: string, text: string, min = -Infinity): number {
+  const n = text.trim() === '' ? Number.NaN : Number(text);
+  if (!Number.isFinite(n) || n < min) invalid(flag, `expected a finite number${min > -Infinity ? ` >= ${min}` : ''}, got ${JSON.stringify(text)}`);
   return n;
 }
 
@@ -219,6 +235,18 @@ export function parseRenderArgs(argv: readonly string[]): RenderCommand | HelpCo
         command.out = out;
         break;
       }
+      case '--env': {
+        const env = take();
+        if (env === '') invalid(flag, 'expects a file name');
+        command.env = env;
+        break;
+      }
+      case '--env-intensity':
+        command.envIntensity = finiteNumber(flag, take(), 0);
+        break;
+      case '--env-rotation':
+        command.envRotationDegrees = finiteNumber(flag, take());
+        break;
       default:
         invalid(flag, `unknown option (see --help)`);
     }

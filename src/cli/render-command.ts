@@ -8,6 +8,8 @@ import type { WavefrontPathTracingRenderer } from '../pathtracer/types.ts';
 import { GpuRendererError } from '../errors/gpu-renderer-error.ts';
 import { createCornellBoxScene } from '../scene/cornell-box.ts';
 import type { WavefrontSceneDescription } from '../scene/types.ts';
+import type { EnvironmentMapInput } from '../lighting/environment-map.ts';
+import { applyEnvironmentFlags } from './environment-flags.ts';
 import { writePng } from '../post/png-node.ts';
 import { writeImageFile } from '../post/files/image-file.ts';
 import type { WavefrontAovName } from '../post/aovs.ts';
@@ -25,7 +27,7 @@ export type { RenderSummary } from './render-format.ts';
 export async function loadScene(
   scenePath: string | undefined,
   options: { camera?: string; variant?: string; stderr?: ProgressStream } = {},
-): Promise<WavefrontSceneDescription> {
+): Promise<WavefrontSceneDescription & { environmentMap?: EnvironmentMapInput }> {
   if (scenePath === undefined) return createCornellBoxScene();
   if (isGltfPath(scenePath)) {
     // Loaded on demand so JSON scenes never pull in the glTF reader and its decoders.
@@ -52,7 +54,7 @@ export function cliMinimumSamples(command: RenderCommand): number | undefined {
 
 export async function runRenderCommand(command: RenderCommand, io: { stderr: ProgressStream } = { stderr: process.stderr }): Promise<RenderSummary> {
   const t0 = performance.now();
-  const scene = await loadScene(command.scenePath, { camera: command.camera, variant: command.variant, stderr: io.stderr });
+  const scene = await applyEnvironmentFlags(await loadScene(command.scenePath, { camera: command.camera, variant: command.variant, stderr: io.stderr }), command);
   const minimumSamplesPerPixel = cliMinimumSamples(command);
   const renderer: WavefrontPathTracingRenderer = await createWavefrontPathTracingComputeRenderer({
     width: command.width,

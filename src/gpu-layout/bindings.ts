@@ -39,7 +39,9 @@ export const pathTracerBindings = {
   textureAtlas: { group: G.materials, binding: 1, kind: 'texture', type: 'texture_2d_array<f32>', sampleType: 'unfilterable-float', viewDimension: '2d-array', doc: 'every material texture with its mip chain (rgba8unorm)' },
   // Group 2: per frame.
   frame: { group: G.frame, binding: 0, kind: 'uniform', type: 'FrameUniforms', doc: 'camera, environment, lights, scene extents' },
-  lights: { group: G.frame, binding: 1, kind: 'storage', access: 'read', type: 'array<LightRecord>', doc: 'emitters with their selection alias table' },
+  lights: { group: G.frame, binding: 1, kind: 'storage', access: 'read', type: 'array<vec4f>', doc: 'lights heap: emitters, selection tables, light tree, environment tables, portals' },
+  lighting: { group: G.frame, binding: 2, kind: 'uniform', type: 'LightingUniforms', doc: 'where the lights heap keeps each kind of emitter, the sun, selection probabilities' },
+  environmentTexture: { group: G.frame, binding: 3, kind: 'texture', type: 'texture_2d<f32>', sampleType: 'unfilterable-float', viewDimension: '2d', doc: 'environment map radiance (rgba32float, equirectangular, row 0 = +Y)' },
   // Group 3: transport state, per dispatch.
   paths: { group: G.transport, binding: 0, kind: 'storage', access: 'read_write', type: 'array<PathState>', doc: 'state of every path of the wave' },
   rays: { group: G.transport, binding: 1, kind: 'storage', access: 'read_write', type: 'array<RayWorkItem>', doc: 'two ray queues (ping-pong halves)' },

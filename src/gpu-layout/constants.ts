@@ -179,6 +179,22 @@ export const SAMPLER_MIP_LINEAR = 1 << 7;
 export const LIGHT_KIND_TRIANGLE = 0;
 export const LIGHT_FLAG_DOUBLE_SIDED = 1;
 export const LIGHT_FLAG_TEXTURED = 2;
+// Lighting (issue 8): kinds inside the lights heap's records (see src/lighting/gpu-lighting.ts).
+/** AreaLight.kind. */
+export const AREA_LIGHT_RECTANGLE = 0;
+export const AREA_LIGHT_DISK = 1;
+export const AREA_LIGHT_SPHERE = 2;
+export const AREA_LIGHT_FLAG_TWO_SIDED = 1;
+/** PunctualLight.kind. */
+export const PUNCTUAL_LIGHT_POINT = 0;
+export const PUNCTUAL_LIGHT_SPOT = 1;
+export const PUNCTUAL_LIGHT_DIRECTIONAL = 2;
+/** LightTreeNode.flags. */
+export const LIGHT_TREE_FLAG_LEAF = 1;
+export const LIGHT_TREE_FLAG_TWO_SIDED = 2;
+/** LightingUniforms.portalMode. */
+export const PORTAL_MODE_GUIDE = 0;
+export const PORTAL_MODE_GUIDE_AND_GATE = 1;
 
 export const CAMERA_PERSPECTIVE = 0;
 export const CAMERA_ORTHOGRAPHIC = 1;
@@ -289,6 +305,17 @@ export const gpuConstants: Readonly<Record<string, number>> = Object.freeze({
   LIGHT_KIND_TRIANGLE,
   LIGHT_FLAG_DOUBLE_SIDED,
   LIGHT_FLAG_TEXTURED,
+  AREA_LIGHT_RECTANGLE,
+  AREA_LIGHT_DISK,
+  AREA_LIGHT_SPHERE,
+  AREA_LIGHT_FLAG_TWO_SIDED,
+  PUNCTUAL_LIGHT_POINT,
+  PUNCTUAL_LIGHT_SPOT,
+  PUNCTUAL_LIGHT_DIRECTIONAL,
+  LIGHT_TREE_FLAG_LEAF,
+  LIGHT_TREE_FLAG_TWO_SIDED,
+  PORTAL_MODE_GUIDE,
+  PORTAL_MODE_GUIDE_AND_GATE,
   CAMERA_PERSPECTIVE,
   CAMERA_ORTHOGRAPHIC,
   PATH_FLAG_SPECULAR_BOUNCE,

@@ -261,6 +261,123 @@ export const lightRecordLayout: StructLayout = defineStructLayout('LightRecord',
   ['reserved', 'u32'],
 ]);
 
+// Lighting (issue 8). Every emitter and sampling table lives in the `lights` vec4 heap (loaders
+// generated below); src/lighting/gpu-lighting.ts packs it, src/lighting/*.wesl read it.
+
+/**
+ * Selection of bounded light g (emissive triangles, then area lights, then point and spot lights)
+ * for next-event estimation: its Walker/Vose alias bin over estimated power, its probability under
+ * that table, and its light-tree leaf (for the pmf of the tree's traversal).
+ */
+export const lightSelectionEntryLayout: StructLayout = defineStructLayout('LightSelectionEntry', 1, [
+  ['aliasThreshold', 'f32', 'keep bin g when the scaled residual < threshold, else take aliasIndex'],
+  ['aliasIndex', 'u32'],
+  ['pmf', 'f32', 'probability that the power alias table picks g'],
+  ['treeLeaf', 'u32', 'heap-relative light-tree node of g, or INDEX_NONE when g is not in the tree'],
+]);
+
+/** An area light (80 bytes): rectangle, disk or sphere (src/lighting/area-lights.ts). */
+export const areaLightLayout: StructLayout = defineStructLayout('AreaLight', 1, [
+  ['corner', 'vec3f', 'rectangle: center - edgeU/2 - edgeV/2; disk, sphere: the centre'],
+  ['kind', 'u32', '0 rectangle, 1 disk, 2 sphere'],
+  ['edgeU', 'vec3f', 'rectangle: full edge; disk: unit tangent'],
+  ['radius', 'f32', 'disk, sphere'],
+  ['edgeV', 'vec3f', 'rectangle: full edge; disk: unit bitangent'],
+  ['flags', 'u32', 'bit 0: two-sided'],
+  ['normal', 'vec3f', 'unit front-face normal (rectangle, disk)'],
+  ['area', 'f32', 'one side'],
+  ['radiance', 'vec3f', 'emission x intensity'],
+]);
+
+/**
+ * A KHR_lights_punctual light (64 bytes). Infinite range is stored as invRange = 0 so the shader
+ * needs no infinities: window = saturate(1 - (d * invRange)^4).
+ */
+export const punctualLightLayout: StructLayout = defineStructLayout('PunctualLight', 1, [
+  ['position', 'vec3f', 'world position (point, spot)'],
+  ['kind', 'u32', '0 point, 1 spot, 2 directional'],
+  ['direction', 'vec3f', 'unit direction the light travels in (spot, directional)'],
+  ['invRange', 'f32', '1 / range; 0 = unbounded'],
+  ['intensity', 'vec3f', 'color x intensity: cd (point, spot) or lux (directional)'],
+  ['spotScale', 'f32', '1 / max(0.001, cos(inner) - cos(outer))'],
+  ['spotOffset', 'f32', '-cos(outer) * spotScale'],
+]);
+
+/** A node of the light hierarchy (64 bytes, depth-first; src/lighting/light-tree.ts). */
+export const lightTreeNodeLayout: StructLayout = defineStructLayout('LightTreeNode', 1, [
+  ['boundsMin', 'vec3f'],
+  ['phi', 'f32', 'luminance-weighted intensity bound (sum over the subtree)'],
+  ['boundsMax', 'vec3f'],
+  ['cosThetaO', 'f32', 'normal cone spread'],
+  ['axis', 'vec3f', 'normal cone axis (unit)'],
+  ['cosThetaE', 'f32', 'emission spread around each normal'],
+  ['childOrLight', 'u32', 'interior: index of the second child (the first is this + 1); leaf: light index'],
+  ['parent', 'u32', '0xffffffff at the root'],
+  ['flags', 'u32', 'bit 0: leaf; bit 1: two-sided'],
+]);
+
+/** One bin of the environment map's sampling tables (marginal over rows, conditional per row). */
+export const environmentTableEntryLayout: StructLayout = defineStructLayout('EnvironmentTableEntry', 1, [
+  ['threshold', 'f32', 'keep this bin when the scaled residual < threshold, else take aliasIndex'],
+  ['aliasIndex', 'u32', 'marginal: a row; conditional: a column of the row'],
+  ['pdf', 'f32', 'marginal: the row pmf; conditional: the density over (u, v) of this cell'],
+  ['reserved', 'u32'],
+]);
+
+/**
+ * An environment portal (64 bytes): a rectangle through which the environment lights an interior.
+ * Its rectified density (n^2 values) and summed-area table ((n + 1)^2) are f32 values of the lights
+ * heap, at LightingUniforms.portalDataOffset + funcOffset / satOffset (src/lighting/portals.ts).
+ */
+export const environmentPortalLayout: StructLayout = defineStructLayout('EnvironmentPortal', 1, [
+  ['corner', 'vec3f'],
+  ['resolution', 'u32', 'n: the rectified grid is n x n'],
+  ['edgeU', 'vec3f'],
+  ['funcOffset', 'u32', 'in f32 elements of the portal data array'],
+  ['edgeV', 'vec3f'],
+  ['satOffset', 'u32', 'in f32 elements of the portal data array'],
+  ['normal', 'vec3f', 'unit, outward (towards the environment)'],
+]);
+
+/**
+ * What next-event estimation and escaped rays need to find their way through the lights heap: the
+ * environment map's size and tables, the sun disc, where each kind of emitter starts, the light
+ * selection probabilities, and the portals. The environment map's radiance is the
+ * `environmentTexture` binding.
+ */
+export const lightingUniformsLayout: StructLayout = defineStructLayout('LightingUniforms', 1, [
+  ['environmentMapSize', 'vec2u', 'radiance texture width, height'],
+  ['environmentTableSize', 'vec2u', 'sampling table width, height (cells; may be coarser than the map)'],
+  ['environmentIntensity', 'f32', 'radiance = texel x intensity'],
+  ['environmentRotationTurns', 'f32', 'rotationRadians / (2 pi), added to u'],
+  ['environmentTableOffset', 'u32', 'heap cell of the marginal table (tableSize.y entries; the rows follow)'],
+  ['portalCount', 'u32'],
+  ['sunDirection', 'vec3f', 'unit, towards the sun'],
+  ['sunOneMinusCosThetaMax', 'f32', '1 - cos(angular radius)'],
+  ['sunRadiance', 'vec3f', 'mean radiance over the disc'],
+  ['sunLimbDarkening', 'u32', '1: Eddington limb darkening'],
+  ['sunSelectProbability', 'f32', 'probability that NEE samples the sun'],
+  ['directionalSelectProbability', 'f32', 'probability that NEE samples a directional light (then uniformly)'],
+  ['boundedSelectProbability', 'f32', 'probability that NEE samples a bounded light (tree or alias table)'],
+  ['portalGuideProbability', 'f32', "'guide' mode: probability of sampling through the portals"],
+  ['selectionOffset', 'u32', 'heap cell of LightSelectionEntry[boundedCount]'],
+  ['triangleOffset', 'u32', 'heap cell of LightRecord[triangleCount] (7 cells each)'],
+  ['areaOffset', 'u32', 'heap cell of AreaLight[areaCount]'],
+  ['punctualOffset', 'u32', 'heap cell of PunctualLight[punctualCount + directionalCount]'],
+  ['treeOffset', 'u32', 'heap cell of LightTreeNode[] (root first)'],
+  ['triangleCount', 'u32'],
+  ['areaCount', 'u32'],
+  ['punctualCount', 'u32', 'point and spot lights (bounded)'],
+  ['directionalCount', 'u32', 'directional lights, stored after the bounded punctual lights'],
+  ['boundedCount', 'u32', 'triangleCount + areaCount + punctualCount'],
+  ['portalOffset', 'u32', 'heap cell of EnvironmentPortal[portalCount]'],
+  ['portalDataOffset', 'u32', 'f32 index (4 x heap cell) where the portals\' density and SAT values start'],
+  ['portalMode', 'u32', 'PORTAL_MODE_GUIDE or PORTAL_MODE_GUIDE_AND_GATE'],
+  ['treeNodeCount', 'u32', '0: bounded lights are picked by the power alias table'],
+  ['environmentMapEnabled', 'u32', '1: the environment is the map (else the uniform colour)'],
+  ['reserved', 'u32'],
+]);
+
 /** Per-frame constants: camera, environment, lights and scene extents. */
 export const frameUniformsLayout: StructLayout = defineStructLayout('FrameUniforms', 2, [
   ['cameraPosition', 'vec3f'],
@@ -461,6 +578,13 @@ export const wavefrontRecordLayouts = {
   TextureInfo: textureInfoLayout,
   TextureBinding: textureBindingLayout,
   LightRecord: lightRecordLayout,
+  LightSelectionEntry: lightSelectionEntryLayout,
+  AreaLight: areaLightLayout,
+  PunctualLight: punctualLightLayout,
+  LightTreeNode: lightTreeNodeLayout,
+  EnvironmentTableEntry: environmentTableEntryLayout,
+  EnvironmentPortal: environmentPortalLayout,
+  LightingUniforms: lightingUniformsLayout,
   FrameUniforms: frameUniformsLayout,
   PathState: pathStateLayout,
   RayWorkItem: rayWorkItemLayout,
@@ -482,6 +606,7 @@ export const heapRecordLayouts = {
     clearcoatBlockLayout, sheenBlockLayout, iridescenceBlockLayout, anisotropyBlockLayout, diffuseTransmissionBlockLayout,
     mediumRecordLayout, materialTablesLayout,
   ],
+  lights: [lightRecordLayout, lightSelectionEntryLayout, areaLightLayout, punctualLightLayout, lightTreeNodeLayout, environmentTableEntryLayout, environmentPortalLayout],
 } as const;
 
 function vertexBytesAllStreams(): number {

@@ -7,12 +7,17 @@
 import { GpuRendererError, isGpuRendererError } from '../errors/gpu-renderer-error.ts';
 import { parseSceneFile, type WavefrontSceneFile } from '../scene/scene-file.ts';
 import type { WavefrontImageInput, WavefrontSceneDescription } from '../scene/types.ts';
+import type { EnvironmentMapInput } from '../lighting/environment-map.ts';
+import { loadEnvironmentMap } from '../lighting/load-environment-map.ts';
 import { decodeImage } from './gltf/image-decoding.ts';
 import { readResource, readUrl, sourceStringToUrl } from './gltf/resources.ts';
 import { resolveGltfReferences } from './gltf/scene-file-references.ts';
 
+/** A resolved scene: the description plus, when its environment names a map file, that map. */
+export type WavefrontResolvedScene = WavefrontSceneDescription & { environmentMap?: EnvironmentMapInput };
+
 export interface ResolvedSceneFile {
-  scene: WavefrontSceneDescription;
+  scene: WavefrontResolvedScene;
   /** Notes from decoding and loading (e.g. glTF loader warnings), for the user. */
   warnings: string[];
 }
@@ -27,8 +32,24 @@ function asSceneFileError(error: unknown, field: string): GpuRendererError {
 export async function resolveSceneFile(file: WavefrontSceneFile, options: { base?: string | URL; signal?: AbortSignal } = {}): Promise<ResolvedSceneFile> {
   const base = options.base === undefined ? undefined : options.base instanceof URL ? options.base : await sourceStringToUrl(options.base);
   const warnings: string[] = [];
-  const { gltf, images, ...rest } = file;
-  const scene: WavefrontSceneDescription = { ...rest };
+  const { gltf, images, environment, ...rest } = file;
+  const scene: WavefrontResolvedScene = { ...rest };
+  if (environment !== undefined && 'map' in environment) {
+    // An environment map file (.hdr or .exr) becomes the renderer's environmentMap option.
+    const field = 'environment.map';
+    try {
+      const bytes = await readResource(environment.map, base, field, options.signal);
+      scene.environmentMap = await loadEnvironmentMap(bytes, {
+        field,
+        ...(environment.intensity !== undefined ? { intensity: environment.intensity } : {}),
+        ...(environment.rotationDegrees !== undefined ? { rotationRadians: (environment.rotationDegrees * Math.PI) / 180 } : {}),
+      });
+    } catch (error) {
+      throw asSceneFileError(error, field);
+    }
+  } else if (environment !== undefined) {
+    scene.environment = environment;
+  }
   if (images !== undefined) {
     scene.images = await Promise.all(
       images.map(async (image, i): Promise<WavefrontImageInput> => {

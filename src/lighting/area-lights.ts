@@ -1,6 +1,12 @@
 import { describe, fail, requireFiniteNumber, requireVec } from '../errors/validate.ts';
-import { allocateStructArray, defineStructLayout, writeStruct, type StructLayout } from '../gpu-layout/struct-layout.ts';
+import { allocateStructArray, writeStruct } from '../gpu-layout/struct-layout.ts';
 import { cross, dot, length, normalize, scale, sub, type Vec3 } from './vec3.ts';
+import { AREA_LIGHT_RECTANGLE, AREA_LIGHT_DISK, AREA_LIGHT_SPHERE, AREA_LIGHT_FLAG_TWO_SIDED } from '../gpu-layout/constants.ts';
+import { areaLightLayout } from '../gpu-layout/records.ts';
+import { requireKnownKeys } from './known-keys.ts';
+
+export { AREA_LIGHT_RECTANGLE, AREA_LIGHT_DISK, AREA_LIGHT_SPHERE, AREA_LIGHT_FLAG_TWO_SIDED };
+export { areaLightLayout };
 
 /** Area lights (rectangle, disk, sphere): validation and the GPU record. Inputs: light-types.ts. */
 
@@ -44,6 +50,7 @@ function tangentFrame(n: Vec3): { t: Vec3; b: Vec3 } {
 export function validateAreaLight(input: unknown, field = 'light'): AreaLight {
   if (typeof input !== 'object' || input === null) fail(CODE, field, `expected an object, got ${describe(input)}`);
   const l = input as Record<string, unknown>;
+  requireKnownKeys(l, ['type', 'name', 'emission', 'intensity', 'twoSided', 'center', 'edgeU', 'edgeV', 'normal', 'radius'], field, CODE);
   const type = l.type;
   if (type !== 'rectangle' && type !== 'disk' && type !== 'sphere') fail(CODE, `${field}.type`, `expected 'rectangle', 'disk' or 'sphere', got ${describe(type)}`);
   const emission = l.emission === undefined ? [1, 1, 1] : requireVec(l.emission, 3, `${field}.emission`, CODE);
@@ -76,23 +83,7 @@ export function validateAreaLight(input: unknown, field = 'light'): AreaLight {
   return { type, center, edgeU: [1, 0, 0], edgeV: [0, 1, 0], normal: [0, 0, 1], radius, area: 4 * Math.PI * radius * radius, radiance, twoSided };
 }
 
-export const AREA_LIGHT_RECTANGLE = 0;
-export const AREA_LIGHT_DISK = 1;
-export const AREA_LIGHT_SPHERE = 2;
-export const AREA_LIGHT_FLAG_TWO_SIDED = 1;
 
-/** GPU record of an area light (80 bytes, `array<AreaLight>`). */
-export const areaLightLayout: StructLayout = defineStructLayout('AreaLight', 1, [
-  ['corner', 'vec3f', 'rectangle: center - edgeU/2 - edgeV/2; disk, sphere: the centre'],
-  ['kind', 'u32', '0 rectangle, 1 disk, 2 sphere'],
-  ['edgeU', 'vec3f', 'rectangle: full edge; disk: unit tangent'],
-  ['radius', 'f32', 'disk, sphere'],
-  ['edgeV', 'vec3f', 'rectangle: full edge; disk: unit bitangent'],
-  ['flags', 'u32', 'bit 0: two-sided'],
-  ['normal', 'vec3f', 'unit front-face normal (rectangle, disk)'],
-  ['area', 'f32', 'one side'],
-  ['radiance', 'vec3f', 'emission x intensity'],
-]);
 
 export function packAreaLights(lights: readonly AreaLight[]): ArrayBuffer {
   const buffer = allocateStructArray(areaLightLayout, lights.length);

@@ -8,6 +8,7 @@ import { CIE_OVERCAST_ILLUMINANCE_FACTOR, cieOvercastRadiance, studioRadiance } 
 import { LUMENS_PER_WATT, solarDiscRadiance } from './solar-radiance.ts';
 import { oneMinusCos, sunSolidAngle, type SunLight } from './sun-light.ts';
 import { add, dot, luminance, mul, normalize, scale, type Vec3 } from './vec3.ts';
+import { requireKnownKeys } from './known-keys.ts';
 
 /**
  * The `environmentLighting` option: procedural environments baked to an equirect map (sampled like
@@ -111,6 +112,7 @@ function nonNegative(value: unknown, field: string, fallback: number): number {
 export function validateEnvironmentLighting(input: unknown, field = 'environmentLighting'): ValidatedLighting {
   if (typeof input !== 'object' || input === null || Array.isArray(input)) fail(CODE, field, `expected an object, got ${describe(input)}`);
   const v = input as Record<string, unknown>;
+  requireKnownKeys(v, ['preset', 'sunDirection', 'turbidity', 'groundAlbedo', 'sunColor', 'sunIntensity', 'skyIntensity', 'sunAngularDiameterDegrees', 'sunLimbDarkening', 'zenithLuminance', 'width', 'height'], field, CODE);
   const preset = (v.preset ?? 'clear') as EnvironmentLightingPreset;
   if (!PRESETS.includes(preset)) fail(CODE, `${field}.preset`, `expected one of ${PRESETS.join(', ')}, got ${describe(v.preset)}`);
   const defaults = preset === 'noon' || preset === 'sunset' || preset === 'clear' ? PRESET_DEFAULTS[preset] : PRESET_DEFAULTS.clear;

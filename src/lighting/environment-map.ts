@@ -3,6 +3,7 @@ import { describe, fail, requireFiniteNumber, requireInteger } from '../errors/v
 import { directionToEquirectUv } from './equirect.ts';
 import { halfToFloat } from './half-float.ts';
 import type { Vec3 } from './vec3.ts';
+import { requireKnownKeys } from './known-keys.ts';
 
 /**
  * The `environmentMap` option: an equirectangular radiance map (see equirect.ts for the mapping).
@@ -42,6 +43,7 @@ export function validateEnvironmentMap(input: unknown, field = 'environmentMap')
   const code = 'INVALID_ENVIRONMENT';
   if (typeof input !== 'object' || input === null || Array.isArray(input)) fail(code, field, `expected an object, got ${describe(input)}`);
   const value = input as Record<string, unknown>;
+  requireKnownKeys(value, ['width', 'height', 'data', 'intensity', 'rotationRadians'], field, code);
   const width = requireInteger(value.width, `${field}.width`, { min: 1, max: MAX_ENVIRONMENT_MAP_DIMENSION }, code);
   const height = requireInteger(value.height, `${field}.height`, { min: 1, max: MAX_ENVIRONMENT_MAP_DIMENSION }, code);
   const raw = value.data;

@@ -21,7 +21,8 @@ import { luminance, type Vec3 } from './vec3.ts';
  * uniform residual of each random number, which places the sample inside its texel: two numbers
  * per sample in all.
  *
- * GPU table (`entries`, one storage buffer, `array<EnvironmentAliasEntry>`, 12-byte stride):
+ * Table (`entries`, EnvironmentAliasEntry records of 12 bytes; gpu-lighting.ts copies each into an
+ * EnvironmentTableEntry cell of the lights heap, read by environment-map.wesl):
  *   records [0, H): marginal over rows: { threshold: f32, alias: u32 (a row), pdf: f32 (the row's pmf) }
  *   records [H + j W, H + (j + 1) W): row j's conditional over columns:
  *     { threshold: f32, alias: u32 (a column of row j), pdf: f32 (pdf_uv of texel (i, j), i = this record's own column) }
@@ -29,8 +30,8 @@ import { luminance, type Vec3 } from './vec3.ts';
  *   density is pdf_uv / (2 pi^2 sin(theta)). Rows that weigh 0 get threshold 1 (never reached).
  * Radiance: the map's RGBA float32 texels (row-major, row 0 = zenith) in an rgba32float texture
  * read with textureLoad and filtered by hand (rgba32float is not filterable without the optional
- * 'float32-filterable' feature; rgba16float would clip HDR suns above 65504), or a storage buffer.
- * Uniforms: width, height, intensity, rotationRadians / (2 pi).
+ * 'float32-filterable' feature; rgba16float would clip HDR suns above 65504).
+ * Uniforms: LightingUniforms (map and table sizes, intensity, rotationRadians / (2 pi)).
  */
 
 /** One alias-table bin as the GPU reads it. */
@@ -42,6 +43,13 @@ export const environmentAliasEntryLayout: StructLayout = defineStructLayout('Env
 
 export interface EnvironmentSampler {
   readonly map: EnvironmentMap;
+  /**
+   * Size of the sampling tables in cells: the map's size, or coarser for maps above
+   * `maxTableCells` (a cell then covers a block of texels; see buildEnvironmentSampler). W and H
+   * in the layout above are these.
+   */
+  readonly tableWidth: number;
+  readonly tableHeight: number;
   /** (H + W H) EnvironmentAliasEntry records; see the module comment. */
   readonly entries: ArrayBuffer;
   /** float32 and uint32 views of `entries` (what the GPU reads). */
@@ -88,9 +96,35 @@ export function filteredTexelLuminance(map: Pick<EnvironmentMap, 'width' | 'heig
   return out;
 }
 
-export function buildEnvironmentSampler(map: EnvironmentMap): EnvironmentSampler {
-  const { width: w, height: h } = map;
-  const filtered = filteredTexelLuminance(map);
+/** Table size for a map: halved (rounding up) until it has at most `maxCells` cells. */
+export function environmentTableSize(width: number, height: number, maxCells = Infinity): [number, number] {
+  let w = width;
+  let h = height;
+  while (w * h > maxCells && (w > 1 || h > 1)) {
+    w = Math.ceil(w / 2);
+    h = Math.ceil(h / 2);
+  }
+  return [w, h];
+}
+
+/**
+ * Builds the tables (`uniform`: sin(theta) weights only, i.e. uniform directions, for measuring
+ * what importance sampling gains). With `maxTableCells` below the map's texel count the tables get coarser
+ * (environmentTableSize): table cell (I, J) covers texel columns [floor(I W / W_t), floor((I + 1) W
+ * / W_t)) and the rows likewise, and weighs the mean filtered luminance of its texels times
+ * sin(theta) at its own centre row. Sampling and pdf use the table's cells throughout, so they stay
+ * consistent, and a cell weighs 0 only where the radiance is 0 over all of it.
+ */
+export function buildEnvironmentSampler(map: EnvironmentMap, options: { maxTableCells?: number; uniform?: boolean } = {}): EnvironmentSampler {
+  const [w, h] = environmentTableSize(map.width, map.height, options.maxTableCells);
+  let cellLuminance: Float64Array;
+  if (options.uniform) {
+    // Uniform over the sphere (weights sin(theta) only): the baseline importance sampling is measured against.
+    cellLuminance = new Float64Array(w * h).fill(1);
+  } else {
+    const filtered = filteredTexelLuminance(map);
+    cellLuminance = w === map.width && h === map.height ? filtered : blockMeans(filtered, map.width, map.height, w, h);
+  }
   const weights = new Float64Array(w * h);
   const rowSums = new Float64Array(h);
   let total = 0;
@@ -98,7 +132,7 @@ export function buildEnvironmentSampler(map: EnvironmentMap): EnvironmentSampler
     const sinTheta = Math.sin((Math.PI * (j + 0.5)) / h);
     let s = 0;
     for (let i = 0; i < w; i++) {
-      const x = filtered[j * w + i]! * sinTheta;
+      const x = cellLuminance[j * w + i]! * sinTheta;
       weights[j * w + i] = x;
       s += x;
     }
@@ -128,7 +162,24 @@ export function buildEnvironmentSampler(map: EnvironmentMap): EnvironmentSampler
   } else {
     total = 0;
   }
-  return { map, entries, entriesF32: f32, entriesU32: u32, weights, weightIntegral: total / (w * h) };
+  return { map, tableWidth: w, tableHeight: h, entries, entriesF32: f32, entriesU32: u32, weights, weightIntegral: total / (w * h) };
+}
+
+/** Means of the values over the blocks of texels each coarse cell covers. */
+function blockMeans(values: Float64Array, width: number, height: number, w: number, h: number): Float64Array {
+  const out = new Float64Array(w * h);
+  for (let J = 0; J < h; J++) {
+    const y0 = Math.floor((J * height) / h);
+    const y1 = Math.floor(((J + 1) * height) / h);
+    for (let I = 0; I < w; I++) {
+      const x0 = Math.floor((I * width) / w);
+      const x1 = Math.floor(((I + 1) * width) / w);
+      let sum = 0;
+      for (let y = y0; y < y1; y++) for (let x = x0; x < x1; x++) sum += values[y * width + x]!;
+      out[J * w + I] = sum / ((y1 - y0) * (x1 - x0));
+    }
+  }
+  return out;
 }
 
 /**
@@ -148,8 +199,7 @@ export function sampleAliasRecords(f32: Float32Array, u32: Uint32Array, base: nu
 export function sampleEnvironment(sampler: EnvironmentSampler, u1: number, u2: number): EnvironmentSample {
   const { map } = sampler;
   if (!(sampler.weightIntegral > 0)) return { direction: [0, 1, 0], pdf: 0, radiance: [0, 0, 0] };
-  const { entriesF32: f32, entriesU32: u32 } = sampler;
-  const { width: w, height: h } = map;
+  const { entriesF32: f32, entriesU32: u32, tableWidth: w, tableHeight: h } = sampler;
   const [j, rv] = sampleAliasRecords(f32, u32, 0, h, u1);
   const [i, ru] = sampleAliasRecords(f32, u32, h + j * w, w, u2);
   const pdfUv = f32[3 * (h + j * w + i) + 2]!;
@@ -164,8 +214,8 @@ export function sampleEnvironment(sampler: EnvironmentSampler, u1: number, u2: n
 /** Solid-angle density with which `sampleEnvironment` returns unit direction `d`. */
 export function environmentPdf(sampler: EnvironmentSampler, d: readonly number[]): number {
   if (!(sampler.weightIntegral > 0)) return 0;
-  const { width: w, height: h, rotationRadians } = sampler.map;
-  const [u, v] = directionToEquirectUv(d, rotationRadians);
+  const { tableWidth: w, tableHeight: h } = sampler;
+  const [u, v] = directionToEquirectUv(d, sampler.map.rotationRadians);
   const i = Math.min(Math.floor(u * w), w - 1);
   const j = Math.min(Math.floor(v * h), h - 1);
   const f32 = sampler.entriesF32;

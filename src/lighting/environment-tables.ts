@@ -3,7 +3,9 @@ import type { EnvironmentSampler } from './environment-sampling.ts';
 import { sunLightLayout, type SunLight } from './sun-light.ts';
 
 /**
- * What the GPU reads for environment lighting, packed (phase 2 uploads these as they are):
+ * A standalone packing of an environment for GPU code outside the path tracer (the path tracer
+ * packs its own: gpu-lighting.ts puts the tables into the lights heap and the sun into
+ * LightingUniforms):
  * - radiance: the map's RGBA float32 texels (row-major, row 0 = zenith): an rgba32float texture
  *   (textureLoad + hand-written bilinear: wrap u, clamp v) or `array<vec4f>`;
  * - entries: `array<EnvironmentAliasEntry>` (environment-sampling.ts: H marginal records, then W

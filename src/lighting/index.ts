@@ -4,6 +4,7 @@ export { validateEnvironmentMap, bilinearTexel, environmentRadiance, MAX_ENVIRON
 export { directionToEquirectUv, equirectUvToDirection, equirectSinTheta, uvPdfToSolidAngle, solidAnglePdfToUv } from './equirect.ts';
 export {
   buildEnvironmentSampler,
+  environmentTableSize,
   sampleEnvironment,
   environmentPdf,
   filteredTexelLuminance,
@@ -114,3 +115,22 @@ export {
 } from './portals.ts';
 export { validateLights, type ValidatedLights } from './lights.ts';
 export { packEnvironment, environmentMapUniformsLayout, type PackedEnvironment } from './environment-tables.ts';
+export {
+  validateLightingOptions,
+  AUTO_LIGHT_TREE_THRESHOLD,
+  type WavefrontLightingOptions,
+  type WavefrontSceneLightInput,
+  type WavefrontLightSamplerMode,
+  type LightingConfig,
+  type LightingEnvironment,
+} from './lighting-options.ts';
+export {
+  buildGpuLighting,
+  lightGroupProbabilities,
+  MAX_ENVIRONMENT_TABLE_CELLS,
+  MIN_GROUP_PROBABILITY,
+  type GpuLighting,
+  type GpuLightingInput,
+  type LightGroupProbabilities,
+} from './gpu-lighting.ts';
+export { uploadEnvironmentTexture, type UploadedEnvironment } from './upload-environment.ts';

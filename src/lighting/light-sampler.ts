@@ -15,9 +15,9 @@ import { cross, length, luminance, scale, type Vec3 } from './vec3.ts';
  *   chosen uniformly, as pbrt-v4's BVHLightSampler does: with N infinite lights and a non-empty
  *   tree, each infinite light has probability 1 / (N + 1) and the tree 1 / (N + 1).
  *
- * GPU: the tree's `nodes` and `lightToLeaf` tables, and a uniform with T, A, P and the infinite
- * lights' count; the infinite list itself is tiny (environment?, sun?, then directional punctual
- * indices) and goes in a uniform or storage array of u32 (kind << 24 | index).
+ * The GPU (gpu-lighting.ts, light-sampling.wesl) uses the same global indices and tree, but picks
+ * the infinite lights and the tree by estimated power rather than uniformly (any split is
+ * unbiased), and the tree's leaves are found through each light's LightSelectionEntry.
  */
 
 export type LightKind = 'triangle' | 'area' | 'punctual' | 'environment' | 'sun';

@@ -1,7 +1,12 @@
-import { allocateStructArray, defineStructLayout, writeStruct, type StructLayout } from '../gpu-layout/struct-layout.ts';
+import { allocateStructArray, writeStruct } from '../gpu-layout/struct-layout.ts';
 import { lightBoundsImportance, unionBounds, type LightBounds } from './light-bounds.ts';
 import { ONE_MINUS_EPSILON_F32 } from './environment-sampling.ts';
 import type { Vec3 } from './vec3.ts';
+import { LIGHT_TREE_FLAG_LEAF, LIGHT_TREE_FLAG_TWO_SIDED } from '../gpu-layout/constants.ts';
+import { lightTreeNodeLayout } from '../gpu-layout/records.ts';
+
+export { LIGHT_TREE_FLAG_LEAF, LIGHT_TREE_FLAG_TWO_SIDED };
+export { lightTreeNodeLayout };
 
 /**
  * A light hierarchy (BVH over emitters) for many-light sampling: Conty Estevez and Kulla 2018,
@@ -18,28 +23,15 @@ import type { Vec3 } from './vec3.ts';
  * - pmf of a given light (MIS): walk from its leaf to the root through the parent links,
  *   multiplying importance(node) / (importance(left) + importance(right)) of every ancestor.
  *
- * GPU layout: `nodes`, `array<LightTreeNode>` (64 bytes each, depth-first: the first child of an
- * interior node is the next record), plus `lightToLeaf`, `array<u32>` (light index -> node index,
- * 0xffffffff for lights not in the tree). Light indices are the caller's (light-sampler.ts uses
- * [emissive triangles | area lights | punctual lights]).
- * WGSL port: both walks are plain loops over node indices; sampling needs no stack.
+ * GPU layout: LightTreeNode records (64 bytes each, depth-first: the first child of an interior
+ * node is the next record) in the lights heap, and each light's leaf (`lightToLeaf`, light index ->
+ * node index, 0xffffffff for lights not in the tree) in its LightSelectionEntry. Light indices are
+ * the caller's (light-sampler.ts and gpu-lighting.ts use [emissive triangles | area lights | point
+ * and spot lights]). The WGSL port (light-tree.wesl): both walks are plain loops over node indices.
  */
 
 export const LIGHT_TREE_NONE = 0xffffffff;
-export const LIGHT_TREE_FLAG_LEAF = 1;
-export const LIGHT_TREE_FLAG_TWO_SIDED = 2;
 
-export const lightTreeNodeLayout: StructLayout = defineStructLayout('LightTreeNode', 1, [
-  ['boundsMin', 'vec3f'],
-  ['phi', 'f32', 'luminance-weighted intensity bound (sum over the subtree)'],
-  ['boundsMax', 'vec3f'],
-  ['cosThetaO', 'f32', 'normal cone spread'],
-  ['axis', 'vec3f', 'normal cone axis (unit)'],
-  ['cosThetaE', 'f32', 'emission spread around each normal'],
-  ['childOrLight', 'u32', 'interior: index of the second child (the first is this + 1); leaf: light index'],
-  ['parent', 'u32', '0xffffffff at the root'],
-  ['flags', 'u32', 'bit 0: leaf; bit 1: two-sided'],
-]);
 
 export interface LightTreeNode {
   bounds: LightBounds;

@@ -1,9 +1,13 @@
 import { describe, fail, requireVec } from '../errors/validate.ts';
-import { allocateStructArray, defineStructLayout, writeStruct, type StructLayout } from '../gpu-layout/struct-layout.ts';
+import { allocateStructArray, writeStruct } from '../gpu-layout/struct-layout.ts';
 import type { Vec3Input } from '../scene/types.ts';
 import { environmentRadiance } from './environment-map.ts';
 import { environmentPdf, sampleEnvironment, type EnvironmentSampler } from './environment-sampling.ts';
 import { add, cross, dot, length, luminance, normalize, scale, sub, type Vec3 } from './vec3.ts';
+import { environmentPortalLayout } from '../gpu-layout/records.ts';
+import { requireKnownKeys } from './known-keys.ts';
+
+export { environmentPortalLayout };
 
 /**
  * Environment portals (`environmentPortals`, `environmentPortalMode`): rectangles such as windows
@@ -68,6 +72,7 @@ export function validateEnvironmentPortals(input: unknown, field = 'environmentP
     const f = `${field}[${i}]`;
     if (typeof p !== 'object' || p === null) fail(CODE, f, `expected an object, got ${describe(p)}`);
     const v = p as Record<string, unknown>;
+    requireKnownKeys(v, ['center', 'edgeU', 'edgeV'], f, CODE);
     const center = requireVec(v.center, 3, `${f}.center`, CODE) as Vec3;
     const edgeU = requireVec(v.edgeU, 3, `${f}.edgeU`, CODE) as Vec3;
     const edgeV = requireVec(v.edgeV, 3, `${f}.edgeV`, CODE) as Vec3;
@@ -327,20 +332,6 @@ export function portalEnvironmentPdf(s: PortalEnvironmentSampler, p: readonly nu
 
 // ---- GPU layout ----------------------------------------------------------------------------------------
 
-/**
- * GPU record of a portal (64 bytes, `array<EnvironmentPortal>`); the rectified densities and SATs
- * of all portals live in one `array<f32>`: portal k's func (n^2 values, row-major) at funcOffset,
- * its SAT ((n + 1)^2 values, row-major, sat[y (n + 1) + x]) at satOffset.
- */
-export const environmentPortalLayout: StructLayout = defineStructLayout('EnvironmentPortal', 1, [
-  ['corner', 'vec3f'],
-  ['resolution', 'u32', 'n: the rectified grid is n x n'],
-  ['edgeU', 'vec3f'],
-  ['funcOffset', 'u32', 'in f32 elements of the portal data array'],
-  ['edgeV', 'vec3f'],
-  ['satOffset', 'u32', 'in f32 elements of the portal data array'],
-  ['normal', 'vec3f', 'unit, outward (towards the environment)'],
-]);
 
 export function packPortals(s: PortalEnvironmentSampler): { records: ArrayBuffer; data: Float32Array } {
   const records = allocateStructArray(environmentPortalLayout, s.portals.length);

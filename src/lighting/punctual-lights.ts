@@ -1,7 +1,13 @@
 import { fail, requireFiniteNumber, requireVec, describe } from '../errors/validate.ts';
-import { defineStructLayout, allocateStructArray, writeStruct, type StructLayout } from '../gpu-layout/struct-layout.ts';
+import { allocateStructArray, writeStruct } from '../gpu-layout/struct-layout.ts';
 import type { WavefrontPunctualLightInput } from '../scene/types.ts';
 import { dot, length, normalize, scale, sub, type Vec3 } from './vec3.ts';
+import { PUNCTUAL_LIGHT_POINT, PUNCTUAL_LIGHT_SPOT, PUNCTUAL_LIGHT_DIRECTIONAL } from '../gpu-layout/constants.ts';
+import { punctualLightLayout } from '../gpu-layout/records.ts';
+import { requireKnownKeys } from './known-keys.ts';
+
+export { PUNCTUAL_LIGHT_POINT, PUNCTUAL_LIGHT_SPOT, PUNCTUAL_LIGHT_DIRECTIONAL };
+export { punctualLightLayout };
 
 /**
  * KHR_lights_punctual point, spot and directional lights: validation, GPU packing and the CPU
@@ -50,6 +56,7 @@ function unitVec3(value: unknown, field: string): Vec3 {
 export function validatePunctualLight(input: unknown, field = 'light'): PunctualLight {
   if (typeof input !== 'object' || input === null) fail(CODE, field, `expected an object, got ${describe(input)}`);
   const l = input as WavefrontPunctualLightInput & Record<string, unknown>;
+  requireKnownKeys(l, ['type', 'name', 'color', 'intensity', 'range', 'position', 'direction', 'innerConeAngle', 'outerConeAngle'], field, CODE);
   const type = l.type;
   if (type !== 'point' && type !== 'spot' && type !== 'directional') fail(CODE, `${field}.type`, `expected 'point', 'spot' or 'directional', got ${describe(type)}`);
   const color = l.color === undefined ? [1, 1, 1] : nonNegativeVec3(l.color, `${field}.color`);
@@ -116,23 +123,7 @@ export function punctualLightIncident(light: PunctualLight, p: readonly number[]
   return { wi, distance, incident: scale(light.intensity, attenuation) };
 }
 
-export const PUNCTUAL_LIGHT_POINT = 0;
-export const PUNCTUAL_LIGHT_SPOT = 1;
-export const PUNCTUAL_LIGHT_DIRECTIONAL = 2;
 
-/**
- * GPU record of a punctual light (64 bytes, `array<PunctualLight>`). Infinite range is stored as
- * invRange = 0 so the shader needs no infinities: window = saturate(1 - (d * invRange)^4).
- */
-export const punctualLightLayout: StructLayout = defineStructLayout('PunctualLight', 1, [
-  ['position', 'vec3f', 'world position (point, spot)'],
-  ['kind', 'u32', '0 point, 1 spot, 2 directional'],
-  ['direction', 'vec3f', 'unit direction the light travels in (spot, directional)'],
-  ['invRange', 'f32', '1 / range; 0 = unbounded'],
-  ['intensity', 'vec3f', 'color x intensity: cd (point, spot) or lux (directional)'],
-  ['spotScale', 'f32', '1 / max(0.001, cos(inner) - cos(outer))'],
-  ['spotOffset', 'f32', '-cos(outer) * spotScale'],
-]);
 
 /** Packs validated punctual lights (at least one zeroed record, as WebGPU bindings cannot be empty). */
 export function packPunctualLights(lights: readonly PunctualLight[]): ArrayBuffer {

@@ -5,6 +5,7 @@ import {
   bvhNodeLayout,
   frameUniformsLayout,
   instanceLayout,
+  lightingUniformsLayout,
   lightRecordLayout,
   pathStateLayout,
   primitiveLayout,
@@ -34,7 +35,7 @@ export interface PlannedBuffer {
 /** Buffers of the path tracer that are not bindings of its kernels. */
 export type AuxiliaryBufferName = 'displayUniforms' | 'displayPixels' | 'timestamps';
 
-export type PlannedBufferName = Exclude<PathTracerBindingName, 'textureAtlas'> | AuxiliaryBufferName;
+export type PlannedBufferName = Exclude<PathTracerBindingName, 'textureAtlas' | 'environmentTexture'> | AuxiliaryBufferName;
 
 /** Sizes the plan is computed from: known before the BVH is built or anything is allocated. */
 export interface BufferPlanInput {
@@ -55,6 +56,8 @@ export interface BufferPlanInput {
   alphaPrimitiveCount: number;
   instanceCount: number;
   lightCount: number;
+  /** Vec4 cells of the lights heap when known (src/lighting/gpu-lighting.ts); else estimated from lightCount. */
+  lightHeapCells?: number;
   /** Vec4 cells of the material heap. */
   materialCells: number;
 }
@@ -83,7 +86,8 @@ export function planBuffers(i: BufferPlanInput): Record<PlannedBufferName, Plann
     indices: scene(i.indices, 'the index buffer'),
     vertexStreams: scene(i.vertexStreams, 'the vertex streams'),
     materials: scene(Math.max(1, i.materialCells) * 16, 'the material heap', 'materials'),
-    lights: scene(Math.max(1, i.lightCount) * lightRecordLayout.size, 'the light records'),
+    lights: scene(i.lightHeapCells !== undefined ? Math.max(1, i.lightHeapCells) * 16 : Math.max(1, i.lightCount) * lightRecordLayout.size, 'the lights heap'),
+    lighting: frame(lightingUniformsLayout.size, 'the lighting constants'),
     frame: frame(frameUniformsLayout.size, 'the frame constants'),
     paths: queue(capacity * pathStateLayout.size, 'the path states'),
     rays: queue(2 * capacity * rayWorkItemLayout.size, 'the ray queues'),

@@ -1,4 +1,5 @@
 import { fail, requireInteger, requireNumberInRange, requireVec } from '../errors/validate.ts';
+import { validateLightingOptions, type LightingConfig } from '../lighting/lighting-options.ts';
 import { maxRadiance } from '../scene/limits.ts';
 import type { WavefrontToneMapping } from '../scene/types.ts';
 import { normalizeWavefrontCamera, type WavefrontCamera } from './camera.ts';
@@ -25,6 +26,8 @@ export interface WavefrontPathTracingComputeConfig {
   aovs: boolean;
   /** Adaptive sampling, denoiser, presentation, submission bounds and feature flags (output-options.ts). */
   output: WavefrontOutputConfig;
+  /** Environment map or sky, punctual and area lights, portals, light sampler (src/lighting/lighting-options.ts). */
+  lighting: LightingConfig;
   /** Multiple-scattering energy compensation of rough microfacet lobes (materials). */
   energyCompensation: boolean;
 }
@@ -36,6 +39,8 @@ export const wavefrontOptionNames: ReadonlySet<string> = new Set<keyof Wavefront
   'width', 'height', 'maxDepth', 'samplesPerPixel', 'tileSize', 'seed', 'camera', 'meshes', 'instances', 'materials', 'textures',
   'images', 'sceneObjects', 'lights', 'environment', 'toneMapping', 'exposure', 'aovs', 'shaderSpecialization', 'canvas', 'device', 'powerPreference',
   ...outputOptionNames,
+  // Lighting (src/lighting/lighting-options.ts).
+  'environmentMap', 'environmentLighting', 'environmentPortals', 'environmentPortalMode', 'lightSampler', 'environmentSampling',
   'energyCompensation',
 ]);
 
@@ -60,9 +65,7 @@ export function createWavefrontPathTracingComputeConfig(options: Partial<Wavefro
     c.forEach((v, i) => requireNumberInRange(v, `environment.color[${i}]`, { min: 0, max: maxRadiance }));
     environment = [c[0]!, c[1]!, c[2]!];
   }
-  if (options.lights !== undefined && (!Array.isArray(options.lights) || options.lights.length > 0)) {
-    fail('INVALID_OPTION', 'lights', 'punctual and area lights are not supported by this renderer version; use emissive meshes');
-  }
+  const lighting = validateLightingOptions(options, environment);
   const toneMapping = options.toneMapping ?? 'neutral';
   if (!toneMappings.includes(toneMapping)) fail('INVALID_OPTION', 'toneMapping', `expected one of ${toneMappings.join(', ')}`);
   const exposure = options.exposure === undefined ? 1 : requireNumberInRange(options.exposure, 'exposure', { min: 0 });
@@ -70,7 +73,7 @@ export function createWavefrontPathTracingComputeConfig(options: Partial<Wavefro
   if (options.energyCompensation !== undefined && typeof options.energyCompensation !== 'boolean') fail('INVALID_OPTION', 'energyCompensation', 'expected a boolean');
   const output = parseOutputOptions(options);
   return {
-    width, height, maxDepth, samplesPerPixel, tileSize, seed, camera, environment, toneMapping, exposure, aovs: options.aovs ?? false, output,
+    width, height, maxDepth, samplesPerPixel, tileSize, seed, camera, environment, toneMapping, exposure, aovs: options.aovs ?? false, output, lighting,
     energyCompensation: options.energyCompensation ?? false,
   };
 }

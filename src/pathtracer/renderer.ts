@@ -4,7 +4,8 @@ import { BufferUsage } from '../gpu/webgpu-constants.ts';
 import { queueCounterCount, queueCounterSlots, rendererWavefrontComputeWorkgroupSize } from '../gpu-layout/constants.ts';
 import { instanceLayout } from '../gpu-layout/records.ts';
 import { fieldOf } from '../gpu-layout/struct-layout.ts';
-import { luminance } from '../lighting/emissive-lights.ts';
+import { buildGpuLighting, type GpuLighting } from '../lighting/gpu-lighting.ts';
+import { uploadEnvironmentTexture } from '../lighting/upload-environment.ts';
 import { uploadTextureAtlas } from '../materials/textures/upload-texture-atlas.ts';
 import { isWavefrontAovName, wavefrontAovNames, type WavefrontAovName } from '../post/aovs.ts';
 import { normalizeWavefrontScene, type NormalizedScene } from '../scene/normalize-scene.ts';
@@ -89,20 +90,6 @@ function instanceIdTables(scene: NormalizedScene, prepared: PreparedScene): Inst
   return { objectIds, materialIds };
 }
 
-/**
- * Probability that next-event estimation samples the environment rather than an emitter, in
- * proportion to estimated power: the environment's flux through the scene's bounding sphere
- * (pi * 4 pi R^2 * L) against the emitters'. Any split in (0, 1) is unbiased; this only steers
- * variance, so it is bounded away from 0 and 1 to keep both strategies alive.
- */
-function environmentSelectProbability(environment: readonly number[], sceneRadius: number, lightPower: number, lightCount: number): number {
-  const envLum = luminance(environment);
-  if (!(envLum > 0)) return 0;
-  if (lightCount === 0) return 1;
-  const envPower = envLum * 4 * Math.PI * Math.PI * sceneRadius * sceneRadius;
-  return Math.min(0.95, Math.max(0.05, envPower / (envPower + lightPower)));
-}
-
 /** Output accumulation the options need: the denoiser's guides are the AOVs, its variance the moments. */
 function outputFeatures(config: WavefrontPathTracingComputeConfig): { aovs: boolean; moments: boolean } {
   const denoise = config.output.denoise !== null;
@@ -110,13 +97,19 @@ function outputFeatures(config: WavefrontPathTracingComputeConfig): { aovs: bool
 }
 
 /** The shader features a scene needs; everything else is compiled out. */
-function sceneFeatures(prepared: PreparedScene, config: WavefrontPathTracingComputeConfig): ShaderFeatures {
+function sceneFeatures(prepared: PreparedScene, lighting: GpuLighting, config: WavefrontPathTracingComputeConfig): ShaderFeatures {
   return {
     FEATURE_ANALYTIC_SHAPES: prepared.uses.analyticShapes,
     FEATURE_ALPHA_TEST: prepared.uses.alphaTest,
     FEATURE_TEXTURES: prepared.uses.textures,
     FEATURE_EMISSIVE_LIGHTS: prepared.uses.emissiveLights,
-    FEATURE_ENVIRONMENT: config.environment.some((c) => c > 0),
+    FEATURE_ENVIRONMENT: lighting.uses.environment,
+    FEATURE_ENVIRONMENT_MAP: lighting.uses.environmentMap,
+    FEATURE_SUN: lighting.uses.sun,
+    FEATURE_PORTALS: lighting.uses.portals,
+    FEATURE_PUNCTUAL_LIGHTS: lighting.uses.punctualLights,
+    FEATURE_AREA_LIGHTS: lighting.uses.areaLights,
+    FEATURE_LIGHT_TREE: lighting.uses.lightTree,
     FEATURE_AOVS: outputFeatures(config).aovs,
     FEATURE_FILM_MOMENTS: outputFeatures(config).moments,
     FEATURE_ADAPTIVE_SAMPLING: config.output.adaptive !== null,
@@ -145,15 +138,16 @@ export async function createWavefrontPathTracingComputeRenderer(options: Wavefro
     const estimate = planInput(config, scene);
     checkBufferLimits(limits, planBuffers(estimate));
     const prepared = await prepareScene(scene, { maxTextureDimension2D: limits.maxTextureDimension2D, maxTextureArrayLayers: limits.maxTextureArrayLayers }, { energyCompensation: config.energyCompensation });
-    const plan = planBuffers({ ...estimate, materialCells: prepared.materials.byteLength / 16, lightCount: prepared.lightCount, primitiveCount: prepared.primitiveCount });
+    const lighting = buildGpuLighting({ config: config.lighting, triangles: { records: prepared.lights, count: prepared.lightCount }, sceneCenter: prepared.sceneCenter, sceneRadius: prepared.sceneRadius });
+    const plan = planBuffers({ ...estimate, materialCells: prepared.materials.byteLength / 16, lightCount: prepared.lightCount, lightHeapCells: lighting.heap.byteLength / 16, primitiveCount: prepared.primitiveCount });
     checkBufferLimits(limits, plan);
-    const features = specialization === 'off' ? allShaderFeatures : sceneFeatures(prepared, config);
+    const features = specialization === 'off' ? allShaderFeatures : sceneFeatures(prepared, lighting, config);
     const [pipelines, adaptivePipelines, denoisePipelines] = await Promise.all([
       pathTracerPipelines(acquired.device, features),
       config.output.adaptive ? createAdaptivePipelines(acquired.device, features) : null,
       config.output.denoise ? createDenoisePipelines(acquired.device, features) : null,
     ]);
-    const renderer = new WavefrontRenderer(acquired, config, scene, prepared, { ...pipelines, adaptive: adaptivePipelines, denoise: denoisePipelines }, plan);
+    const renderer = new WavefrontRenderer(acquired, config, scene, prepared, lighting, { ...pipelines, adaptive: adaptivePipelines, denoise: denoisePipelines }, plan);
     if (canvas) await renderer.attachCanvas(canvas);
     return renderer;
   } catch (error) {
@@ -189,11 +183,12 @@ class WavefrontRenderer extends EventTarget implements WavefrontPathTracingRende
   private readonly buffers: GpuBufferSet;
   private readonly resources: Record<PlannedBufferName, GPUBuffer>;
   private readonly atlasTexture: GPUTexture;
+  private readonly environmentTexture: GPUTexture;
+  private readonly lighting: GpuLighting;
   private readonly textureBytes: number;
   private readonly encoderOfWaves: WavefrontEncoder;
   private readonly display: FilmDisplay;
   private readonly timing: { querySet: GPUQuerySet; resolve: GPUBuffer } | null;
-  private readonly environmentSelectProbability: number;
   private readonly adaptive: AdaptiveScheduler | null;
   private readonly denoiser: AtrousDenoisePass | null;
   private readonly instanceIds: InstanceIds;
@@ -212,6 +207,7 @@ class WavefrontRenderer extends EventTarget implements WavefrontPathTracingRende
     config: WavefrontPathTracingComputeConfig,
     scene: NormalizedScene,
     prepared: PreparedScene,
+    lighting: GpuLighting,
     pipelines: RendererPipelines,
     plan: Record<PlannedBufferName, PlannedBuffer>,
   ) {
@@ -222,7 +218,7 @@ class WavefrontRenderer extends EventTarget implements WavefrontPathTracingRende
     this.config = config;
     this.scene = { instanceCount: scene.instances.length, sceneObjectCount: scene.sceneObjects.length, prepared };
     this.capacity = queueCapacity(config.width, config.height, config.tileSize);
-    this.environmentSelectProbability = environmentSelectProbability(config.environment, prepared.sceneRadius, prepared.lightPower, prepared.lightCount);
+    this.lighting = lighting;
     const b = (this.buffers = new GpuBufferSet(device));
     const S = BufferUsage.STORAGE;
     const uploads: Partial<Record<PlannedBufferName, ArrayBuffer>> = {
@@ -234,10 +230,11 @@ class WavefrontRenderer extends EventTarget implements WavefrontPathTracingRende
       indices: prepared.indices.buffer as ArrayBuffer,
       vertexStreams: prepared.vertexStreams.buffer as ArrayBuffer,
       materials: prepared.materials,
-      lights: prepared.lights,
+      lights: lighting.heap,
     };
     const usage: Partial<Record<PlannedBufferName, number>> = {
       frame: BufferUsage.UNIFORM | BufferUsage.COPY_DST,
+      lighting: BufferUsage.UNIFORM | BufferUsage.COPY_DST,
       wave: BufferUsage.UNIFORM | BufferUsage.COPY_DST,
       bounce: BufferUsage.UNIFORM | BufferUsage.COPY_DST,
       displayUniforms: BufferUsage.UNIFORM | BufferUsage.COPY_DST,
@@ -263,10 +260,14 @@ class WavefrontRenderer extends EventTarget implements WavefrontPathTracingRende
     this.resources = resources;
     const atlas = uploadTextureAtlas(device, prepared.atlas);
     this.atlasTexture = atlas.texture;
-    this.textureBytes = atlas.bytes;
+    const environment = uploadEnvironmentTexture(device, lighting.environmentMap);
+    this.environmentTexture = environment.texture;
+    this.textureBytes = atlas.bytes + environment.bytes;
+    device.queue.writeBuffer(resources.lighting, 0, lighting.uniforms);
     const map: PathTracerResourceMap = {
       ...resources,
       textureAtlas: atlas.view,
+      environmentTexture: environment.view,
       display: resources.displayUniforms,
       displayFilm: resources.film,
       displayPixels: resources.displayPixels,
@@ -296,8 +297,9 @@ class WavefrontRenderer extends EventTarget implements WavefrontPathTracingRende
       this.resources.frame,
       0,
       packFrameUniforms(this.config, {
-        lightCount: p.lightCount,
-        environmentSelectProbability: this.environmentSelectProbability,
+        lightCount: this.lighting.boundedCount,
+        environmentSelectProbability: this.lighting.environmentSelectProbability,
+        environmentRadiance: this.lighting.uniformEnvironment,
         sceneCenter: p.sceneCenter,
         sceneRadius: p.sceneRadius,
         queueCapacity: this.capacity,
@@ -636,7 +638,7 @@ class WavefrontRenderer extends EventTarget implements WavefrontPathTracingRende
       triangleCount: p.triangleCount,
       bvhNodeCount: p.bvh.nodeCount,
       bvhDepth: p.bvh.depth,
-      lightCount: p.lightCount,
+      lightCount: this.lighting.boundedCount + this.lighting.directionalCount,
       sceneObjectCount: this.scene.sceneObjectCount,
       instanceCount: this.scene.instanceCount,
       textureCount: p.atlas.textureCount,
@@ -660,6 +662,7 @@ class WavefrontRenderer extends EventTarget implements WavefrontPathTracingRende
     this.timing?.querySet.destroy();
     this.buffers.destroy();
     this.atlasTexture.destroy();
+    this.environmentTexture.destroy();
     if (this.ownsDevice) this.device.destroy();
   }
 }

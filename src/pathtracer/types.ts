@@ -1,3 +1,4 @@
+import type { WavefrontLightingOptions, WavefrontSceneLightInput } from '../lighting/lighting-options.ts';
 import type { WavefrontAovName } from '../post/aovs.ts';
 import type { WavefrontCameraInput, WavefrontSceneDescription, WavefrontToneMapping } from '../scene/types.ts';
 import type { WavefrontOutputOptions, WavefrontRenderFrameOptions } from './output-options.ts';
@@ -18,9 +19,12 @@ export type CanvasTarget = HTMLCanvasElement | OffscreenCanvas | string;
 
 /**
  * Renderer options: the scene (what a scene file or the glTF loader gives) plus render settings and
- * the output options (adaptive sampling, denoising, presentation, feature flags; output-options.ts).
+ * the lighting options (environment map or sky, portals, light sampler) and the output options
+ * (adaptive sampling, denoising, presentation, feature flags; output-options.ts).
  */
-export interface WavefrontPathTracingOptions extends WavefrontSceneDescription, WavefrontOutputOptions {
+export interface WavefrontPathTracingOptions extends Omit<WavefrontSceneDescription, 'lights'>, WavefrontLightingOptions, WavefrontOutputOptions {
+  /** KHR_lights_punctual point, spot and directional lights, and rectangle, disk and sphere area lights. */
+  lights?: WavefrontSceneLightInput[];
   width: number;
   height: number;
   /** Scattering events per path (pbrt-v4 semantics), 1..32; default 8. */

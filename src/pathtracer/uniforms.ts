@@ -10,6 +10,8 @@ export const toneMappingIds: Record<WavefrontToneMapping, number> = { neutral: T
 export interface FrameSceneConstants {
   lightCount: number;
   environmentSelectProbability: number;
+  /** Uniform environment radiance (src/lighting/gpu-lighting.ts); the config's colour when omitted. */
+  environmentRadiance?: readonly number[];
   sceneCenter: readonly number[];
   sceneRadius: number;
   queueCapacity: number;
@@ -28,7 +30,7 @@ export function packFrameUniforms(c: WavefrontPathTracingComputeConfig, s: Frame
     cameraKind: camera.kind === 'orthographic' ? CAMERA_ORTHOGRAPHIC : CAMERA_PERSPECTIVE,
     cameraForward: camera.forward,
     orthographicHalfHeight: camera.orthographicHalfHeight,
-    environmentRadiance: c.environment,
+    environmentRadiance: s.environmentRadiance ?? c.environment,
     environmentSelectProbability: s.environmentSelectProbability,
     sceneCenter: s.sceneCenter,
     sceneRadius: s.sceneRadius,

@@ -12,4 +12,4 @@ export type {
 export { createAnimatedSceneRenderer } from './animated/animated-scene-renderer.ts';
 export { createProfessionalAnimatedSceneRenderer } from './animated/professional-renderer.ts';
 export { builtInPropKinds } from './animated/prop-meshes.ts';
-export type { AnimatedSceneRenderer, AnimatedSceneRendererOptions, AnimatedSceneSnapshot } from './animated/animated-types.ts';
+export type { AnimatedPosedScene, AnimatedSceneRenderer, AnimatedSceneRendererOptions, AnimatedSceneSnapshot } from './animated/animated-types.ts';

@@ -6,4 +6,4 @@ export { normalizeWavefrontInstance, type NormalizedInstance } from './instance.
 export { normalizeWavefrontScene, type NormalizedScene } from './normalize-scene.ts';
 export { maxCoordinateMagnitude, maxRadiance, maxEmittedPower } from './limits.ts';
 export { createCornellBoxScene } from './cornell-box.ts';
-export { parseSceneFile, validateSceneDescription } from './scene-file.ts';
+export { parseSceneFile, validateSceneDescription, type WavefrontSceneFile, type WavefrontEnvironmentMapReference } from './scene-file.ts';

@@ -31,11 +31,23 @@ export interface WavefrontImageReference {
 }
 
 /**
- * What a scene file holds: a scene description whose images may be given by `uri`, plus `gltf`
- * references to glTF assets merged into the scene. `resolveSceneFile` / `loadSceneFile`
- * (src/io/scene-file-loader.ts) turn it into a renderer-ready WavefrontSceneDescription.
+ * An environment map a scene file names by location (a .hdr or .exr file relative to the scene
+ * file, a URL or a data URI), with its radiance multiplier and rotation about +Y in degrees.
  */
-export interface WavefrontSceneFile extends Omit<WavefrontSceneDescription, 'images'> {
+export interface WavefrontEnvironmentMapReference {
+  map: string;
+  intensity?: number;
+  rotationDegrees?: number;
+}
+
+/**
+ * What a scene file holds: a scene description whose images may be given by `uri` and whose
+ * environment may be a map file, plus `gltf` references to glTF assets merged into the scene.
+ * `resolveSceneFile` / `loadSceneFile` (src/io/scene-file-loader.ts) turn it into a renderer-ready
+ * WavefrontSceneDescription (an environment map becomes its `environmentMap` option).
+ */
+export interface WavefrontSceneFile extends Omit<WavefrontSceneDescription, 'images' | 'environment'> {
+  environment?: WavefrontEnvironmentInput | WavefrontEnvironmentMapReference;
   images?: (WavefrontImageInput | WavefrontImageReference)[];
   gltf?: GltfSceneReference[];
 }
@@ -182,9 +194,21 @@ function validate(value: unknown, r: SceneFileReader): WavefrontSceneFile {
     });
   };
 
-  const environment = (v: unknown, f: string): WavefrontEnvironmentInput => {
-    const o = r.object(v, f, ['color']);
-    if (o.color === undefined) r.fail(join(f, 'color'), 'is required');
+  // `{ color }` (uniform radiance) or `{ map, intensity?, rotationDegrees? }` (an environment map file).
+  const environment = (v: unknown, f: string): WavefrontEnvironmentInput | WavefrontEnvironmentMapReference => {
+    const o = r.object(v, f, ['color', 'map', 'intensity', 'rotationDegrees']);
+    if (o.map !== undefined) {
+      if (o.color !== undefined) r.fail(join(f, 'color'), 'an environment is either { color } or { map, intensity?, rotationDegrees? }');
+      const map = r.string(o.map, join(f, 'map'));
+      if (map === '') r.fail(join(f, 'map'), 'expects a file name or URL');
+      return pick<WavefrontEnvironmentMapReference>(o, f, {
+        map: () => map,
+        intensity: (x, g) => r.number(x, g, { min: 0 }),
+        rotationDegrees: (x, g) => r.number(x, g),
+      });
+    }
+    for (const key of ['intensity', 'rotationDegrees'] as const) if (o[key] !== undefined) r.fail(join(f, key), 'applies to an environment map ({ map })');
+    if (o.color === undefined) r.fail(join(f, 'color'), 'is required (or give a map)');
     return { color: vec3(o.color, join(f, 'color')) };
   };
 

@@ -13,6 +13,13 @@ export const shaderFeatures = {
   FEATURE_AOVS: { default: true, doc: 'the first non-specular hit writes albedo, normal, depth and ids' },
   FEATURE_FILM_MOMENTS: { default: true, doc: 'the film accumulates the half-sample sum and second moments (adaptive sampling, variance, denoising)' },
   FEATURE_ADAPTIVE_SAMPLING: { default: true, doc: 'waves take their pixels from the active-pixel list of adaptive sampling' },
+  // Lighting (issue 8).
+  FEATURE_ENVIRONMENT_MAP: { default: true, doc: 'the environment is an importance-sampled map (environmentMap, environmentLighting)' },
+  FEATURE_SUN: { default: true, doc: 'a sun disc (environmentLighting) is cone-sampled and seen by escaped rays' },
+  FEATURE_PORTALS: { default: true, doc: 'environment portals steer environment sampling' },
+  FEATURE_PUNCTUAL_LIGHTS: { default: true, doc: 'point, spot or directional lights are sampled by next-event estimation' },
+  FEATURE_AREA_LIGHTS: { default: true, doc: 'rectangle, disk or sphere lights are sampled, hit by rays and block rays' },
+  FEATURE_LIGHT_TREE: { default: true, doc: 'bounded lights are chosen by the light hierarchy instead of the power alias table' },
   // KHR material extensions (materials subsystem): each compiles in when a material uses it.
   FEATURE_SPECULAR: { default: true, doc: 'KHR_materials_specular: specular weight and F0 colour' },
   FEATURE_TRANSMISSION: { default: true, doc: 'KHR_materials_transmission: thin-walled and refractive GGX transmission' },

@@ -14,11 +14,10 @@ import { GpuRendererError } from '../../errors/gpu-renderer-error.ts';
 import { describe, fail, requireInteger } from '../../errors/validate.ts';
 import { loadGltfScene, type GltfScene } from '../../io/gltf/load-gltf-scene.ts';
 import { resolveAnimationFrame } from '../../runtime/animation-frame.ts';
-import type { WavefrontSceneDescription } from '../../scene/types.ts';
 import { meshBounds } from '../gpu/geometry.ts';
 import { createRasterRenderer } from '../renderer.ts';
 import type { RasterRenderer } from '../types.ts';
-import type { AnimatedSceneRenderer, AnimatedSceneRendererOptions, AnimatedSceneSnapshot } from './animated-types.ts';
+import type { AnimatedPosedScene, AnimatedSceneRenderer, AnimatedSceneRendererOptions, AnimatedSceneSnapshot } from './animated-types.ts';
 import { groundMesh } from './ground-mesh.ts';
 import { appendGltfScene, appendMaterials, emptySceneParts, type SceneParts } from './merge-scene.ts';
 import { modelRasterParts, type ModelDrawPart } from './model-meshes.ts';
@@ -316,7 +315,8 @@ export async function createAnimatedRenderer(options: AnimatedSceneRendererOptio
     readPixels: () => raster.readPixels(),
     posedScene(tMs) {
       const baked = core.bakePose(tMs, { material: (i) => materialOf(i) });
-      const scene: WavefrontSceneDescription = {
+      const scene: AnimatedPosedScene = {
+        lights,
         meshes: [...parts.meshes.slice(0, parts.meshes.length - modelParts.meshes.length), ...baked.meshes],
         instances: [],
         materials: parts.materials,
@@ -328,7 +328,10 @@ export async function createAnimatedRenderer(options: AnimatedSceneRendererOptio
       scene.instances = [...staticInstances, ...baked.instances.map((inst) => ({ ...inst, mesh: inst.mesh + offset }))];
       const rig = lastFrame !== null && lastFrame.tMs === tMs ? lastFrame.camera : core.camera.evaluate(tMs, core.subject);
       scene.camera = { position: rig.transform.position, target: rig.transform.target, up: rig.transform.up, fovYDegrees: rig.transform.fovYDegrees };
-      scene.environment = { color: [...(options.environment?.color ?? DEFAULT_SKY)] };
+      // The raster view's lighting; the path tracer takes one environment (a map, a sky or a colour).
+      if (options.environmentMap !== undefined) scene.environmentMap = options.environmentMap;
+      else if (options.environmentLighting !== undefined) scene.environmentLighting = options.environmentLighting;
+      else scene.environment = { color: [...(options.environment?.color ?? DEFAULT_SKY)] };
       void characterMaterials;
       return scene;
     },

@@ -93,11 +93,19 @@ export interface AnimatedSceneRenderer {
   readPixels(): Promise<RendererPixels>;
   /**
    * The posed scene at `tMs` for the path tracer: skinned vertices baked on the CPU, props and
-   * ground, the rig's camera, a uniform environment. Spread it into
+   * ground, the rig's camera, and the lighting the raster view draws (the same environment colour,
+   * map or sky and the same lights, the default key light included). Spread it into
    * createWavefrontPathTracingComputeRenderer's options; its BVH is built from these meshes.
    */
-  posedScene(tMs: number): WavefrontSceneDescription;
+  posedScene(tMs: number): AnimatedPosedScene;
   destroy(): void;
+}
+
+/** A posed still for the path tracer: the scene plus the raster view's lighting. */
+export interface AnimatedPosedScene extends Omit<WavefrontSceneDescription, 'lights'> {
+  lights: WavefrontPunctualLightInput[];
+  environmentMap?: EnvironmentMapInput;
+  environmentLighting?: EnvironmentLightingInput;
 }
 
 export type { CameraTransform, HeadLookIntent };
