@@ -127,27 +127,26 @@ export function grey(a: FilmCapture): number[] {
 }
 
 /**
- * Mean squared difference between horizontally and vertically adjacent pixels (8-bit steps²): the
- * pixel-to-pixel variance that Monte Carlo noise adds to an image's own edges.
+ * Pixel-to-pixel noise: the median, over the pairs of horizontally or vertically adjacent pixels that
+ * are not both black, of |ΔR| + |ΔG| + |ΔB| (8-bit steps). Monte Carlo noise makes most neighbours
+ * differ; the image's own edges are a minority of pairs, which the median ignores.
  */
-export function neighbourVariance(a: FilmCapture): number {
-  const g = grey(a);
-  let sum = 0;
-  let n = 0;
+export function medianNeighbourDifference(a: FilmCapture): number {
+  const d = a.data;
+  const differences: number[] = [];
+  const pair = (i: number, j: number): void => {
+    if (d[i]! + d[i + 1]! + d[i + 2]! === 0 && d[j]! + d[j + 1]! + d[j + 2]! === 0) return;
+    differences.push(Math.abs(d[i]! - d[j]!) + Math.abs(d[i + 1]! - d[j + 1]!) + Math.abs(d[i + 2]! - d[j + 2]!));
+  };
   for (let y = 0; y < a.height; y++) {
     for (let x = 0; x < a.width; x++) {
-      const v = g[y * a.width + x]!;
-      if (x + 1 < a.width) {
-        sum += (v - g[y * a.width + x + 1]!) ** 2;
-        n++;
-      }
-      if (y + 1 < a.height) {
-        sum += (v - g[(y + 1) * a.width + x]!) ** 2;
-        n++;
-      }
+      const i = 4 * (y * a.width + x);
+      if (x + 1 < a.width) pair(i, i + 4);
+      if (y + 1 < a.height) pair(i, i + 4 * a.width);
     }
   }
-  return sum / n;
+  differences.sort((p, q) => p - q);
+  return differences[differences.length >> 1]!;
 }
 
 /** Pearson correlation of two captures' grey values. */
