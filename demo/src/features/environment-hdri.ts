@@ -82,7 +82,8 @@ export function hdriSource(): EnvironmentSource {
   return {
     id: 'hdri',
     label: 'HDRI map',
-    mount(parent, context) {
+    mount(parent, context, params) {
+      choice = hdriChoices.find((c) => c.id === params.get('hdri')) ?? choice;
       selectControl(parent, 'hdri', 'Map', hdriChoices.map((c) => ({ value: c.id, label: c.label })), choice.id, (id) => {
         choice = hdriChoices.find((c) => c.id === id)!;
         context.rebuild();

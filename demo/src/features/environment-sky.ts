@@ -29,7 +29,8 @@ export function skySource(): EnvironmentSource {
   return {
     id: 'sky',
     label: 'Sun and sky',
-    mount(parent, context) {
+    mount(parent, context, params) {
+      preset = presets.find((p) => p.value === params.get('sky'))?.value ?? preset;
       selectControl(parent, 'sky-preset', 'Preset', presets, preset, (value) => {
         preset = value;
         context.rebuild();

@@ -13,7 +13,7 @@ export interface EnvironmentSource {
   id: string;
   label: string;
   /** Adds the source's controls to `parent` (shown only while the source is selected). */
-  mount(parent: HTMLElement, context: DemoContext): void;
+  mount(parent: HTMLElement, context: DemoContext, params: URLSearchParams): void;
   /** May wait for a download or a decode (the renderer is built once it resolves). */
   rendererOptions(): Partial<WavefrontPathTracingOptions> | Promise<Partial<WavefrontPathTracingOptions>>;
   sceneLoaded?(scene: DemoScene): void;
@@ -73,6 +73,9 @@ export const environmentFeature: DemoFeature = (() => {
     id: 'environment',
     mount(panel, ctx) {
       context = ctx;
+      // ?light=colour|hdri|sky picks the source at start (each source reads its own parameter).
+      const params = new URLSearchParams(location.search);
+      active = environmentSources.find((s) => s.id === params.get('light')) ?? active;
       const box = section(panel, 'Environment', 'environment');
       const bodies = new Map<string, HTMLElement>();
       if (environmentSources.length > 1) {
@@ -99,7 +102,7 @@ export const environmentFeature: DemoFeature = (() => {
         body.hidden = source !== active;
         box.append(body);
         bodies.set(source.id, body);
-        source.mount(body, sourceContext);
+        source.mount(body, sourceContext, params);
       }
     },
     rendererOptions: () => active.rendererOptions(),
