@@ -7,12 +7,13 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { join } from 'node:path';
+import type { Page } from 'playwright-core';
 import { captureAtLeast, captureCanvas, choose, chromiumSkip, correlation, ensureTestOutputDir, grey, meanAbsoluteDifference, openDemo } from './demo-page.ts';
 
 const width = 64;
 const height = 48;
 
-const rasterFrames = (tab: import('playwright-core').Page): Promise<number> =>
+const rasterFrames = (tab: Page): Promise<number> =>
   tab.evaluate(() => {
     const el = document.querySelector('[data-readout="samples"]');
     return el?.textContent?.startsWith('raster') ? Number(el.getAttribute('data-value')) : 0;
@@ -37,8 +38,6 @@ test('demo: the raster view draws the built-in scene the path tracer shows', { s
   await tab.locator('#viewport').screenshot({ path: join(ensureTestOutputDir(), 'demo-swatches-raster.png') });
   assert.ok(spread > 10, `the raster picture is not blank (standard deviation ${spread.toFixed(1)})`);
   assert.ok(r > 0.6, `the raster picture shows the path-traced scene (correlation ${r.toFixed(3)})`);
-  const out = ensureTestOutputDir();
-  await tab.locator('#viewport').screenshot({ path: join(out, 'demo-swatches-raster.png') });
 
   // Orbit: the raster view redraws from the new camera.
   const before = await rasterFrames(tab);
