@@ -28,7 +28,22 @@ export const demoViteConfig: UserConfig = {
     // Pre-bundle every browser-side dependency up front: discovering one on first use makes Vite
     // reload the page mid-session.
     entries: ['index.html'],
-    include: ['@gltf-transform/core', '@gltf-transform/extensions', 'fflate', 'fast-png', 'jpeg-js', 'meshoptimizer', 'mikktspace', 'wgpu-matrix'],
+    // The HDRI maps (@pmndrs/assets) and three's EXRLoader are dynamic imports: each stays a chunk of
+    // its own, fetched when the environment picker first needs it.
+    include: [
+      '@gltf-transform/core',
+      '@gltf-transform/extensions',
+      'fflate',
+      'fast-png',
+      'jpeg-js',
+      'meshoptimizer',
+      'mikktspace',
+      'wgpu-matrix',
+      'three/examples/jsm/loaders/EXRLoader.js',
+      '@pmndrs/assets/hdri/studio.exr.js',
+      '@pmndrs/assets/hdri/city.exr.js',
+      '@pmndrs/assets/hdri/sunset.exr.js',
+    ],
   },
   build: { target: 'es2022', outDir: fileURLToPath(new URL('../dist-demo', import.meta.url)), emptyOutDir: true },
 };

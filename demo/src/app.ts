@@ -43,6 +43,11 @@ export class DemoApp {
       },
       rebuild: () => this.view.rebuild(),
       redisplay: () => this.view.redisplay(),
+      setExposure: (exposureEv) => {
+        this.display.exposureEv = exposureEv;
+        for (const feature of this.features) feature.displayChanged?.();
+        this.view.redisplay();
+      },
       resume: () => this.view.resume(),
       currentImage: (): CurrentImage | null => this.view.currentImage(),
     };
@@ -95,7 +100,8 @@ export class DemoApp {
     this.readouts.status(text, kind);
   }
 
-  private rendererOptions(): Partial<WavefrontPathTracingOptions> {
-    return Object.assign({}, ...this.features.map((f) => f.rendererOptions?.() ?? {})) as Partial<WavefrontPathTracingOptions>;
+  private async rendererOptions(): Promise<Partial<WavefrontPathTracingOptions>> {
+    const parts = await Promise.all(this.features.map((f) => f.rendererOptions?.() ?? {}));
+    return Object.assign({}, ...parts) as Partial<WavefrontPathTracingOptions>;
   }
 }

@@ -2,16 +2,12 @@
 // each a few lines in its own module:
 //
 // - DemoFeature (features/index.ts): a control panel section that contributes renderer options
-//   and/or display behaviour. Today: environment, tone mapping and exposure, render settings,
-//   export. Planned, each a new feature module:
-//     * HDRI / sky: an EnvironmentSource in features/environment.ts (`environmentSources`), whose
-//       rendererOptions() return `{ environmentMap }` (loadEnvironmentMap on a small CC0 map) or
-//       `{ environmentLighting: preset }`; the source picker appears once there are two sources.
-//     * denoise: a feature with a checkbox whose rendererOptions() return `{ denoise: true }` and
-//       whose radianceSource() returns `(r) => r.readDenoised()` while it is checked.
-// - Exporter (features/export.ts, `exporters`): a save button (PNG and EXR today).
-// - DemoView (views/index.ts, `demoViews`): what draws the scene (the progressive path tracer
-//   today); the raster or animated view is a second entry, and the view picker appears with it.
+//   and/or display behaviour: environment (EnvironmentSources in features/environment.ts: uniform
+//   colour, HDRI maps, sun and sky presets), tone mapping and exposure, denoise, render settings
+//   (with adaptive sampling), export.
+// - Exporter (features/export.ts, `exporters`): a save button (PNG and EXR).
+// - DemoView (views/index.ts, `demoViews`): what draws the scene: the progressive path tracer and
+//   the raster preview; the view picker appears once there are two.
 import type { LinearRgbaImage, WavefrontCameraInput, WavefrontPathTracingOptions, WavefrontPathTracingRenderer } from '@plasius/gpu-renderer';
 import type { DisplaySettings } from './film-view.ts';
 import type { DemoScene } from './scenes/types.ts';
@@ -29,7 +25,8 @@ export interface RenderSettings {
 
 /** The image on screen, for exporters. */
 export interface CurrentImage {
-  radiance: LinearRgbaImage;
+  /** Linear radiance; null for views that only have display pixels (the raster view). */
+  radiance: LinearRgbaImage | null;
   pixels: ImageData;
   samples: number;
   sceneName: string;
@@ -47,6 +44,8 @@ export interface DemoContext {
   rebuild(): void;
   /** A display setting changed: the current image is shown again (no new samples needed). */
   redisplay(): void;
+  /** Sets the exposure (stops), updating the exposure control, and shows the image again. */
+  setExposure(exposureEv: number): void;
   /** A loop setting changed (samples per frame, stop point): rendering resumes if it had stopped. */
   resume(): void;
   currentImage(): CurrentImage | null;
@@ -56,8 +55,10 @@ export interface DemoFeature {
   id: string;
   /** Adds the feature's controls to the panel (once, at start). */
   mount(panel: HTMLElement, context: DemoContext): void;
-  /** Renderer options merged in whenever the renderer is created. */
-  rendererOptions?(): Partial<WavefrontPathTracingOptions>;
+  /** Renderer options merged in whenever the renderer is created (may wait for a download). */
+  rendererOptions?(): Partial<WavefrontPathTracingOptions> | Promise<Partial<WavefrontPathTracingOptions>>;
+  /** The display settings were changed from outside the feature's controls (setExposure). */
+  displayChanged?(): void;
   /** A new scene was loaded; adopt its suggestions. */
   sceneLoaded?(scene: DemoScene): void;
   /** Replaces the displayed radiance (the last feature that returns one wins). */
@@ -75,13 +76,21 @@ export interface ViewProgress {
   samplesPerSecond: number;
   /** Converged to the stop point, or paused. */
   idle: boolean;
+  /** Counts restarts of accumulation (rebuilds, camera moves): a new value means a new image. */
+  restarts: number;
+  /** Adaptive sampling: pixels still sampling, of all pixels (absent without it). */
+  activePixels?: { active: number; total: number };
+  /** Views that draw whole frames (raster): the frame time, shown instead of samples. */
+  frameTimeMs?: number;
+  /** Replaces the rays/s readout (raster: draw calls and triangles). */
+  detail?: string;
 }
 
 /** What a view needs from the app. */
 export interface ViewHost {
   element: HTMLElement;
   context: DemoContext;
-  rendererOptions(): Partial<WavefrontPathTracingOptions>;
+  rendererOptions(): Promise<Partial<WavefrontPathTracingOptions>>;
   radianceSource(): RadianceSource;
   onProgress(progress: ViewProgress): void;
   onStatus(text: string, kind: 'busy' | 'ok' | 'error'): void;

@@ -1,5 +1,6 @@
 // Entry point: reads the URL parameters, builds the panel, and shows the first scene.
 //   ?scene=cornell|swatches|product  &size=640x480  &depth=8  &spf=1  &stop=1024
+//   &light=colour|hdri|sky  &hdri=studio|city|sunset  &sky=clear|noon|sunset|overcast|studio  &view=path-traced|raster
 import { supportsWebGpu } from '@plasius/gpu-renderer';
 import { DemoApp } from './app.ts';
 import type { RenderSettings } from './extensions.ts';
@@ -30,9 +31,11 @@ async function main(): Promise<void> {
   const params = new URLSearchParams(location.search);
   const viewport = byId('viewport');
   const panel = byId('panel');
+  const viewChoices = demoViews.map((create) => create());
+  const firstView = Math.max(0, viewChoices.findIndex((v) => v.id === params.get('view')));
   const app = new DemoApp(
     { viewport, panel, readouts: byId('readouts'), notes: byId('notes') },
-    { settings: settingsFromUrl(params), features: demoFeatures, view: demoViews[0]!() },
+    { settings: settingsFromUrl(params), features: demoFeatures, view: demoViews[firstView]!() },
   );
   if (!(await supportsWebGpu())) {
     app.status('This browser has no WebGPU adapter: try a recent Chrome or Edge, or enable WebGPU.', 'error');
@@ -48,8 +51,7 @@ async function main(): Promise<void> {
     if (scene) app.showScene(scene.create());
   });
   if (demoViews.length > 1) {
-    const views = demoViews.map((create) => create());
-    selectControl(sceneBox, 'view', 'View', views.map((v) => ({ value: v.id, label: v.label })), views[0]!.id, (id) => app.switchView(demoViews[views.findIndex((v) => v.id === id)]!()));
+    selectControl(sceneBox, 'view', 'View', viewChoices.map((v) => ({ value: v.id, label: v.label })), viewChoices[firstView]!.id, (id) => app.switchView(demoViews[viewChoices.findIndex((v) => v.id === id)]!()));
   }
   const fileInput = Object.assign(document.createElement('input'), { type: 'file', multiple: true, accept: acceptedExtensions.join(',') });
   fileInput.dataset.control = 'file';

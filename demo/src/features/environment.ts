@@ -1,20 +1,24 @@
 // The environment: what lights rays that leave the scene. Each EnvironmentSource contributes
-// renderer options; a picker appears once there is more than one. Today's renderer has the uniform
-// colour. Extension point: the HDRI source (issue 8: `environmentMap` from loadEnvironmentMap on a
-// small CC0 map) and the sky presets (`environmentLighting`) are new entries of
-// `environmentSources`, each with its own controls.
+// renderer options and the exposure it looks right at; the "Light" picker chooses one. Sources:
+// a uniform colour (the scene's suggestion), HDRI maps (environment-hdri.ts) and the sun and sky
+// presets (environment-sky.ts). Choosing a source or changing its controls rebuilds the renderer.
 import type { WavefrontPathTracingOptions } from '@plasius/gpu-renderer';
 import type { DemoContext, DemoFeature } from '../extensions.ts';
 import type { DemoScene } from '../scenes/types.ts';
 import { colourControl, hexToLinear, linearToHex, rangeControl, section, selectControl, setRangeValue } from '../ui/controls.ts';
+import { hdriSource } from './environment-hdri.ts';
+import { skySource } from './environment-sky.ts';
 
 export interface EnvironmentSource {
   id: string;
   label: string;
   /** Adds the source's controls to `parent` (shown only while the source is selected). */
-  mount(parent: HTMLElement, context: DemoContext): void;
-  rendererOptions(): Partial<WavefrontPathTracingOptions>;
+  mount(parent: HTMLElement, context: DemoContext, params: URLSearchParams): void;
+  /** May wait for a download or a decode (the renderer is built once it resolves). */
+  rendererOptions(): Partial<WavefrontPathTracingOptions> | Promise<Partial<WavefrontPathTracingOptions>>;
   sceneLoaded?(scene: DemoScene): void;
+  /** Exposure in stops the source looks right at; undefined: the scene's suggestion. */
+  exposureEv?(): number | undefined;
 }
 
 /** Uniform radiance: a colour (sRGB picker, converted to linear) times a strength. */
@@ -51,33 +55,60 @@ function uniformColourSource(): EnvironmentSource {
   };
 }
 
-export const environmentSources: EnvironmentSource[] = [uniformColourSource()];
+export const environmentSources: EnvironmentSource[] = [uniformColourSource(), hdriSource(), skySource()];
 
 export const environmentFeature: DemoFeature = (() => {
   let active = environmentSources[0]!;
+  let context: DemoContext | undefined;
+  const sceneExposureEv = (): number => {
+    const suggested = context?.scene?.suggestedExposure;
+    return suggested === undefined ? 0 : Math.log2(suggested);
+  };
+  let appliedEv: number | undefined;
+  const applyExposure = (): void => {
+    appliedEv = active.exposureEv?.() ?? sceneExposureEv();
+    context?.setExposure(appliedEv);
+  };
   return {
     id: 'environment',
-    mount(panel, context) {
+    mount(panel, ctx) {
+      context = ctx;
+      // ?light=colour|hdri|sky picks the source at start (each source reads its own parameter).
+      const params = new URLSearchParams(location.search);
+      active = environmentSources.find((s) => s.id === params.get('light')) ?? active;
       const box = section(panel, 'Environment', 'environment');
       const bodies = new Map<string, HTMLElement>();
       if (environmentSources.length > 1) {
         selectControl(box, 'environment-source', 'Light', environmentSources.map((s) => ({ value: s.id, label: s.label })), active.id, (id) => {
           active = environmentSources.find((s) => s.id === id)!;
           for (const [sid, body] of bodies) body.hidden = sid !== id;
-          context.rebuild();
+          applyExposure();
+          ctx.rebuild();
         });
       }
+      // A source's control that changes the source's suggested exposure (a sky preset) applies the
+      // new suggestion; other controls keep the exposure the user set.
+      const sourceContext: DemoContext = Object.create(ctx, {
+        rebuild: {
+          value: () => {
+            const ev = active.exposureEv?.();
+            if (ev !== undefined && ev !== appliedEv) applyExposure();
+            ctx.rebuild();
+          },
+        },
+      }) as DemoContext;
       for (const source of environmentSources) {
         const body = document.createElement('div');
         body.hidden = source !== active;
         box.append(body);
         bodies.set(source.id, body);
-        source.mount(body, context);
+        source.mount(body, sourceContext, params);
       }
     },
     rendererOptions: () => active.rendererOptions(),
     sceneLoaded(scene) {
       for (const source of environmentSources) source.sceneLoaded?.(scene);
+      applyExposure();
     },
   };
 })();

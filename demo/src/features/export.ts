@@ -1,5 +1,6 @@
 // Saving the image. Each Exporter is a button; PNG saves the displayed (tone-mapped) pixels, EXR
-// the linear radiance (32-bit float, ZIP), for compositing. A new format is one more entry.
+// the linear radiance (32-bit float, ZIP), for compositing; the raster view has no linear radiance,
+// so it saves PNG only. A new format is one more entry.
 import { encodeExr, encodePng } from '@plasius/gpu-renderer';
 import type { CurrentImage, DemoFeature } from '../extensions.ts';
 import { buttonControl, download, section } from '../ui/controls.ts';
@@ -9,6 +10,8 @@ export interface Exporter {
   label: string;
   extension: string;
   mimeType: string;
+  /** Whether the view's image has what the format needs (EXR: linear radiance). */
+  accepts?(image: CurrentImage): boolean;
   encode(image: CurrentImage): Uint8Array;
 }
 
@@ -25,7 +28,8 @@ export const exporters: Exporter[] = [
     label: 'Save EXR',
     extension: 'exr',
     mimeType: 'image/x-exr',
-    encode: (image) => encodeExr(image.radiance, { pixelType: 'float', compression: 'zip' }),
+    accepts: (image) => image.radiance !== null,
+    encode: (image) => encodeExr(image.radiance!, { pixelType: 'float', compression: 'zip' }),
   },
 ];
 
@@ -39,7 +43,7 @@ export const exportFeature: DemoFeature = {
     for (const exporter of exporters) {
       buttonControl(buttons, `save-${exporter.id}`, exporter.label, () => {
         const image = context.currentImage();
-        if (!image) return;
+        if (!image || exporter.accepts?.(image) === false) return;
         download(exporter.encode(image), `${image.sceneName}-${image.samples}spp.${exporter.extension}`, exporter.mimeType);
       });
     }

@@ -1,5 +1,6 @@
 // Display: tone mapping operator and exposure in stops. Both only change how the current estimate
-// is shown, so they apply instantly and keep every sample.
+// is shown, so they apply instantly and keep every sample. The exposure a scene and its light
+// suggest is set by the environment feature through DemoContext.setExposure.
 import type { WavefrontToneMapping } from '@plasius/gpu-renderer';
 import type { DemoFeature } from '../extensions.ts';
 import { rangeControl, section, selectControl, setRangeValue } from '../ui/controls.ts';
@@ -24,15 +25,14 @@ export const toneMappingFeature: DemoFeature = (() => {
         context.redisplay();
       });
       const format = (ev: number): string => `${ev > 0 ? '+' : ''}${ev.toFixed(1)} EV`;
-      exposureInput = rangeControl(box, 'exposure', 'Exposure', { min: -6, max: 6, step: 0.1, value: context.display.exposureEv, format }, (ev) => {
+      exposureInput = rangeControl(box, 'exposure', 'Exposure', { min: -18, max: 6, step: 0.1, value: context.display.exposureEv, format }, (ev) => {
         context.display.exposureEv = ev;
         context.redisplay();
       });
     },
-    sceneLoaded(scene) {
-      if (!display || !exposureInput) return;
-      display.exposureEv = scene.suggestedExposure === undefined ? 0 : Math.log2(scene.suggestedExposure);
-      setRangeValue(exposureInput, display.exposureEv);
+    // The environment feature picks the exposure for a scene and light (setExposure).
+    displayChanged() {
+      if (display && exposureInput) setRangeValue(exposureInput, display.exposureEv);
     },
   };
 })();

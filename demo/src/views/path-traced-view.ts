@@ -23,6 +23,9 @@ export class PathTracedView implements DemoView {
   private stopped = false;
   private failed = false;
   private progress = { samples: 0, frames: 0, startedAt: 0, lastFrameAt: 0, rays: 0, renderMs: 0 };
+  private restarts = 0;
+  /** Adaptive sampling's pixels still sampling after the last frame (null without it). */
+  private activePixels: number | null = null;
 
   start(host: ViewHost): void {
     this.host = host;
@@ -60,6 +63,7 @@ export class PathTracedView implements DemoView {
     const radiance = this.film?.currentRadiance;
     const pixels = this.film?.currentPixels;
     if (!radiance || !pixels || !this.scene) return null;
+    // With the denoiser on, this is the denoised estimate (what is shown).
     return { radiance, pixels, samples: this.progress.samples, sceneName: this.scene.name };
   }
 
@@ -81,7 +85,7 @@ export class PathTracedView implements DemoView {
 
   private get wantsFrame(): boolean {
     const max = this.host?.context.settings.maxSamples ?? 0;
-    return this.renderer !== null && !this.failed && (max === 0 || this.progress.samples < max);
+    return this.renderer !== null && !this.failed && (max === 0 || this.progress.samples < max) && this.activePixels !== 0;
   }
 
   private async loop(): Promise<void> {
@@ -116,6 +120,10 @@ export class PathTracedView implements DemoView {
     if (!this.scene || !this.camera) return;
     const { settings } = host.context;
     host.onStatus(`Preparing ${this.scene.name}…`, 'busy');
+    this.resetProgress();
+    // Options can wait for a download (an HDRI map); a newer rebuild supersedes this one.
+    const options = await host.rendererOptions();
+    if (this.pending.rebuild || this.stopped) return;
     if (!this.device) {
       const device = (this.device = (await acquireGpuDevice()).device);
       void device.lost.then((info) => {
@@ -126,7 +134,7 @@ export class PathTracedView implements DemoView {
     const started = performance.now();
     const { renderer, omitted } = await createRendererLeavingOutUnsupported({
       ...this.scene.description,
-      ...host.rendererOptions(),
+      ...options,
       camera: this.camera,
       width: settings.width,
       height: settings.height,
@@ -157,6 +165,7 @@ export class PathTracedView implements DemoView {
     if (renderer !== this.renderer || this.pending.camera) return;
     this.film!.show(radiance, host.context.display);
     this.progress.samples = stats.samplesAccumulated;
+    this.activePixels = stats.adaptive ? stats.adaptive.activePixels : null;
     this.progress.frames += 1;
     this.progress.rays += stats.rays.total;
     this.progress.renderMs += stats.wallTimeMs;
@@ -167,6 +176,8 @@ export class PathTracedView implements DemoView {
   private resetProgress(): void {
     const now = performance.now();
     this.progress = { samples: 0, frames: 0, startedAt: now, lastFrameAt: now, rays: 0, renderMs: 0 };
+    this.restarts += 1;
+    this.activePixels = null;
     this.report(false);
   }
 
@@ -175,6 +186,8 @@ export class PathTracedView implements DemoView {
     const seconds = p.renderMs / 1000;
     const pixels = this.host?.context.settings ? this.host.context.settings.width * this.host.context.settings.height : 0;
     this.host?.onProgress({
+      restarts: this.restarts,
+      ...(this.activePixels !== null ? { activePixels: { active: this.activePixels, total: pixels } } : {}),
       samples: p.samples,
       frames: p.frames,
       elapsedMs: (idle ? p.lastFrameAt : performance.now()) - p.startedAt,
