@@ -14,7 +14,7 @@ export {
 } from './environment-sampling.ts';
 export { decodeRadianceHdr, isRadianceHdr, type DecodedHdrImage } from './radiance-hdr.ts';
 export { decodeOpenExr, isOpenExr, type ExrLoaderLike, type ExrLoaderConstructor } from './openexr.ts';
-export { loadEnvironmentMap, type EnvironmentMapSource, type LoadEnvironmentMapOptions } from './load-environment-map.ts';
+export { loadEnvironmentMap, type EnvironmentMapSource, type LoadEnvironmentMapOptions, type NegativeTexelReport } from './load-environment-map.ts';
 export type { WavefrontAreaLightInput, WavefrontRectangleLightInput, WavefrontDiskLightInput, WavefrontSphereLightInput } from './light-types.ts';
 export {
   validatePunctualLight,

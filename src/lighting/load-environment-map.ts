@@ -15,6 +15,39 @@ export interface LoadEnvironmentMapOptions {
   EXRLoader?: ExrLoaderConstructor;
   /** Name used in error fields, default 'source'. */
   field?: string;
+  /**
+   * Channel values below zero, which lossy OpenEXR compressions (DWAA/DWAB) leave as ringing beside
+   * bright texels: `'error'` (default) refuses the map, naming the first one; `'zero'` sets them to
+   * 0 (which adds energy) and reports how many and how much through `onNegativeTexels`.
+   */
+  negativeTexels?: 'error' | 'zero';
+  /** With `negativeTexels: 'zero'`: called once with what was changed (also when nothing was). */
+  onNegativeTexels?: (report: NegativeTexelReport) => void;
+}
+
+/** What `negativeTexels: 'zero'` changed. */
+export interface NegativeTexelReport {
+  /** Channel values (R, G or B) that were below zero. */
+  channels: number;
+  /** Their magnitude summed, over the sum of the map's non-negative channel values. */
+  addedEnergyFraction: number;
+}
+
+/** Sets negative colour channels to 0 in place; returns what changed. */
+function zeroNegativeChannels(data: Float32Array): NegativeTexelReport {
+  let channels = 0;
+  let removed = 0;
+  let kept = 0;
+  for (let i = 0; i < data.length; i++) {
+    if (i % 4 === 3) continue;
+    const v = data[i]!;
+    if (v < 0) {
+      channels++;
+      removed -= v;
+      data[i] = 0;
+    } else if (Number.isFinite(v)) kept += v;
+  }
+  return { channels, addedEnergyFraction: kept > 0 ? removed / kept : 0 };
 }
 
 const isNode = (): boolean => typeof process !== 'undefined' && typeof process.versions?.node === 'string';
@@ -67,6 +100,14 @@ export async function loadEnvironmentMap(source: EnvironmentMapSource, options: 
   if (isRadianceHdr(bytes)) image = decodeRadianceHdr(bytes, field);
   else if (isOpenExr(bytes)) image = await decodeOpenExr(bytes, field, options.EXRLoader);
   else throw new GpuRendererError('INVALID_ENVIRONMENT', 'not a Radiance .hdr ("#?" header) or OpenEXR file', { field });
+  const policy = options.negativeTexels ?? 'error';
+  if (policy !== 'error' && policy !== 'zero') throw new GpuRendererError('INVALID_OPTION', `expected 'error' or 'zero', got ${String(policy)}`, { field: 'negativeTexels' });
+  if (policy === 'zero') {
+    const data = Float32Array.from(image.data);
+    const report = zeroNegativeChannels(data);
+    image = { ...image, data };
+    options.onNegativeTexels?.(report);
+  }
   return validateEnvironmentMap(
     { width: image.width, height: image.height, data: image.data, intensity: options.intensity, rotationRadians: options.rotationRadians },
     field,

@@ -305,3 +305,25 @@ test('loadEnvironmentMap reads bytes, paths, file URLs and http URLs, and valida
   await assert.rejects(loadEnvironmentMap(new Uint8Array([1, 2, 3, 4, 5])), /not a Radiance/);
   await assert.rejects(loadEnvironmentMap(42 as unknown as string), (e: unknown) => e instanceof GpuRendererError && e.field === 'source');
 });
+
+test("negativeTexels: 'error' refuses a map with a channel below zero (lossy EXR ringing); 'zero' sets it to 0 and reports it", async () => {
+  const w = 8;
+  const h = 4;
+  const rgb = exrSource(w, h);
+  // Two negative channels, as DWA compression leaves beside bright texels.
+  rgb[3 * 9 + 1] = -0.25;
+  rgb[3 * 20 + 2] = -1.5;
+  const exr = encodeExr(w, h, rgb, 'float', 'none');
+  await assert.rejects(loadEnvironmentMap(exr), (e: unknown) => e instanceof GpuRendererError && e.code === 'INVALID_ENVIRONMENT' && e.field === 'source.data[37]');
+  let report: { channels: number; addedEnergyFraction: number } | undefined;
+  const map = await loadEnvironmentMap(exr, { negativeTexels: 'zero', onNegativeTexels: (r) => (report = r) });
+  assert.equal(map.data[4 * 9 + 1], 0);
+  assert.equal(map.data[4 * 20 + 2], 0);
+  let kept = 0;
+  for (const v of rgb) if (v >= 0) kept += v;
+  assert.equal(report?.channels, 2);
+  assert.ok(Math.abs(report!.addedEnergyFraction - 1.75 / kept) < 1e-6 * (1.75 / kept), `added ${report!.addedEnergyFraction} vs ${1.75 / kept}`);
+  // Every other channel is decoded as it is.
+  for (let t = 0; t < w * h; t++) for (let c = 0; c < 3; c++) if (rgb[3 * t + c]! >= 0) assert.ok(Math.abs(map.data[4 * t + c]! - rgb[3 * t + c]!) <= 2 ** -23 * Math.abs(rgb[3 * t + c]!));
+  await assert.rejects(loadEnvironmentMap(exr, { negativeTexels: 'clamp' as never }), (e: unknown) => e instanceof GpuRendererError && e.field === 'negativeTexels');
+});

@@ -4,10 +4,10 @@
 // three.js's EXRLoader (the browser build takes the class; it is imported on first use too).
 //
 // These maps are DWAB-compressed (lossy, DCT based). Its ringing leaves some texels below zero
-// beside bright sources, which the renderer refuses as radiance (INVALID_ENVIRONMENT): for those,
-// the demo decodes with the same decoder, sets the negative channels to zero and says how many
-// and how much energy that adds, under the picker.
-import { GpuRendererError, decodeOpenExr, loadEnvironmentMap, validateEnvironmentMap, type EnvironmentMap, type ExrLoaderConstructor } from '@plasius/gpu-renderer';
+// beside bright sources, which the renderer refuses as radiance by default: the demo asks the
+// loader to set them to zero (`negativeTexels: 'zero'`) and says how many and how much energy that
+// adds, under the picker.
+import { loadEnvironmentMap, type EnvironmentMap, type ExrLoaderConstructor, type NegativeTexelReport } from '@plasius/gpu-renderer';
 import type { EnvironmentSource } from './environment.ts';
 import { rangeControl, selectControl } from '../ui/controls.ts';
 
@@ -27,40 +27,22 @@ export const hdriChoices: readonly HdriChoice[] = [
 export interface LoadedHdri {
   map: EnvironmentMap;
   /** Set when negative texels of the lossy encoding were set to zero. */
-  repair?: { channels: number; addedEnergyShare: number };
+  repair?: NegativeTexelReport;
 }
 
 async function fetchBytes(dataUrl: string): Promise<Uint8Array> {
   return new Uint8Array(await (await fetch(dataUrl)).arrayBuffer());
 }
 
-/** Decodes one of the choices, zeroing the lossy codec's negative ringing if the renderer refuses it. */
+/** Decodes one of the choices, zeroing the lossy codec's negative ringing (and saying so). */
 export async function loadHdri(choice: HdriChoice): Promise<LoadedHdri> {
   const [three, asset] = await Promise.all([import('three/examples/jsm/loaders/EXRLoader.js'), choice.load()]);
   // @types/three declares parse()'s width and height optional; the package's ExrLoaderLike wants numbers.
   const EXRLoader = three.EXRLoader as unknown as ExrLoaderConstructor;
   const bytes = await fetchBytes(asset.default);
-  const field = `${choice.id}.exr`;
-  try {
-    return { map: await loadEnvironmentMap(bytes, { EXRLoader, field }) };
-  } catch (error) {
-    if (!(error instanceof GpuRendererError && error.code === 'INVALID_ENVIRONMENT' && error.field?.startsWith(`${field}.data[`))) throw error;
-  }
-  const image = await decodeOpenExr(bytes, field, EXRLoader);
-  const data = Float32Array.from(image.data);
-  let channels = 0;
-  let removed = 0;
-  let total = 0;
-  for (let i = 0; i < data.length; i++) {
-    if (i % 4 === 3) continue;
-    const v = data[i]!;
-    if (v < 0) {
-      channels++;
-      removed -= v;
-      data[i] = 0;
-    } else total += v;
-  }
-  return { map: validateEnvironmentMap({ width: image.width, height: image.height, data }, field), repair: { channels, addedEnergyShare: removed / Math.max(total - removed, 1e-30) } };
+  let repair: NegativeTexelReport | undefined;
+  const map = await loadEnvironmentMap(bytes, { EXRLoader, field: `${choice.id}.exr`, negativeTexels: 'zero', onNegativeTexels: (report) => (repair = report) });
+  return { map, ...(repair && repair.channels > 0 ? { repair } : {}) };
 }
 
 export function hdriSource(): EnvironmentSource {
@@ -105,7 +87,7 @@ export function hdriSource(): EnvironmentSource {
       const { map, repair } = await loaded(current);
       if (info && current === choice) {
         info.textContent = repair
-          ? `${current.label}: ${repair.channels.toLocaleString('en')} channel values below zero (DWAB compression ringing) set to 0, adding ${(100 * repair.addedEnergyShare).toFixed(2)}% to the map's energy`
+          ? `${current.label}: ${repair.channels.toLocaleString('en')} channel values below zero (DWAB compression ringing) set to 0, adding ${(100 * repair.addedEnergyFraction).toFixed(2)}% to the map's energy`
           : `${current.label}: decoded as is`;
       }
       return { environmentMap: { ...map, intensity, rotationRadians: (rotationDegrees * Math.PI) / 180 } };

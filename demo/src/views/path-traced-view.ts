@@ -1,13 +1,12 @@
 // The progressive path-traced view: one renderer at a time, driven by a single loop so that
 // scene rebuilds, camera moves and frames never overlap. Each frame adds `samplesPerFrame` samples
 // per pixel, reads the linear estimate back and shows it; a camera move restarts accumulation.
-import { acquireGpuDevice, type WavefrontCameraInput, type WavefrontPathTracingRenderer } from '@plasius/gpu-renderer';
+import { type WavefrontCameraInput, type WavefrontPathTracingRenderer } from '@plasius/gpu-renderer';
 import type { CurrentImage, DemoView, ViewHost } from '../extensions.ts';
 import { FilmView } from '../film-view.ts';
 import { createRendererLeavingOutUnsupported } from '../renderable-scene.ts';
 import type { DemoScene } from '../scenes/types.ts';
-
-const nextFrame = (): Promise<void> => new Promise((resolve) => requestAnimationFrame(() => resolve()));
+import { nextFrame, ViewDevice, Wakeup } from './view-loop.ts';
 
 export class PathTracedView implements DemoView {
   readonly id = 'path-traced';
@@ -15,11 +14,11 @@ export class PathTracedView implements DemoView {
   private host: ViewHost | null = null;
   private film: FilmView | null = null;
   private renderer: WavefrontPathTracingRenderer | null = null;
-  private device: GPUDevice | null = null;
+  private readonly device = new ViewDevice((error) => this.fail(error));
   private scene: DemoScene | null = null;
   private camera: WavefrontCameraInput | null = null;
   private pending: { rebuild: boolean; camera: boolean } = { rebuild: false, camera: false };
-  private wake: (() => void) | null = null;
+  private readonly wakeup = new Wakeup();
   private stopped = false;
   private failed = false;
   private progress = { samples: 0, frames: 0, startedAt: 0, lastFrameAt: 0, rays: 0, renderMs: 0 };
@@ -42,13 +41,13 @@ export class PathTracedView implements DemoView {
   rebuild(): void {
     this.pending.rebuild = true;
     this.failed = false;
-    this.signal();
+    this.wakeup.wake();
   }
 
   setCamera(camera: WavefrontCameraInput): void {
     this.camera = camera;
     this.pending.camera = true;
-    this.signal();
+    this.wakeup.wake();
   }
 
   redisplay(): void {
@@ -56,7 +55,7 @@ export class PathTracedView implements DemoView {
   }
 
   resume(): void {
-    this.signal();
+    this.wakeup.wake();
   }
 
   currentImage(): CurrentImage | null {
@@ -69,18 +68,11 @@ export class PathTracedView implements DemoView {
 
   stop(): void {
     this.stopped = true;
-    this.signal();
+    this.wakeup.wake();
     this.renderer?.destroy();
     this.renderer = null;
     this.film?.destroy();
-    this.device?.destroy();
-    this.device = null;
-  }
-
-  private signal(): void {
-    const wake = this.wake;
-    this.wake = null;
-    wake?.();
+    this.device.destroy();
   }
 
   private get wantsFrame(): boolean {
@@ -100,7 +92,7 @@ export class PathTracedView implements DemoView {
         if (this.wantsFrame) await this.renderFrame();
         else {
           this.report(true);
-          await new Promise<void>((resolve) => (this.wake = resolve));
+          await this.wakeup.sleep();
           continue;
         }
       } catch (error) {
@@ -124,13 +116,7 @@ export class PathTracedView implements DemoView {
     // Options can wait for a download (an HDRI map); a newer rebuild supersedes this one.
     const options = await host.rendererOptions();
     if (this.pending.rebuild || this.stopped) return;
-    if (!this.device) {
-      const device = (this.device = (await acquireGpuDevice()).device);
-      void device.lost.then((info) => {
-        if (this.device === device) this.device = null;
-        if (info.reason !== 'destroyed') this.fail(new Error(`GPU device lost: ${info.message}`));
-      });
-    }
+    const device = await this.device.acquire();
     const started = performance.now();
     const { renderer, omitted } = await createRendererLeavingOutUnsupported({
       ...this.scene.description,
@@ -140,7 +126,7 @@ export class PathTracedView implements DemoView {
       height: settings.height,
       maxDepth: settings.maxDepth,
       samplesPerPixel: settings.samplesPerFrame,
-      device: this.device,
+      device,
     });
     if (this.pending.rebuild || this.stopped) {
       // Superseded while it was being built.

@@ -7,7 +7,6 @@
 // A scene it cannot take (analytic scene objects, a material extension it refuses) gets a status
 // line naming why, never a blank picture.
 import {
-  acquireGpuDevice,
   createRasterRenderer,
   GpuRendererError,
   type RasterRenderer,
@@ -17,6 +16,7 @@ import {
 } from '@plasius/gpu-renderer';
 import type { CurrentImage, DemoView, ViewHost } from '../extensions.ts';
 import type { DemoScene } from '../scenes/types.ts';
+import { nextFrame, ViewDevice, Wakeup } from './view-loop.ts';
 
 /** The scene keys the rasteriser draws; anything else in a scene it cannot show. */
 const sceneKeys = ['meshes', 'instances', 'materials', 'textures', 'images', 'lights'] as const;
@@ -40,8 +40,6 @@ export function rasterOptions(scene: DemoScene, camera: WavefrontCameraInput, op
   return result as unknown as RasterRendererOptions;
 }
 
-const nextFrame = (): Promise<void> => new Promise((resolve) => requestAnimationFrame(() => resolve()));
-
 export class RasterView implements DemoView {
   readonly id = 'raster';
   readonly label = 'Raster preview';
@@ -49,11 +47,11 @@ export class RasterView implements DemoView {
   private canvas: HTMLCanvasElement | null = null;
   private pixels: ImageData | null = null;
   private renderer: RasterRenderer | null = null;
-  private device: GPUDevice | null = null;
+  private readonly device = new ViewDevice((error) => this.fail(error));
   private scene: DemoScene | null = null;
   private camera: WavefrontCameraInput | null = null;
   private pending = { rebuild: false, draw: false };
-  private wake: (() => void) | null = null;
+  private readonly wakeup = new Wakeup();
   private stopped = false;
   private frames = 0;
   private restarts = 0;
@@ -76,13 +74,13 @@ export class RasterView implements DemoView {
 
   rebuild(): void {
     this.pending.rebuild = true;
-    this.signal();
+    this.wakeup.wake();
   }
 
   setCamera(camera: WavefrontCameraInput): void {
     this.camera = camera;
     this.pending.draw = true;
-    this.signal();
+    this.wakeup.wake();
   }
 
   // Tone mapping and exposure are creation options of the rasteriser.
@@ -99,18 +97,11 @@ export class RasterView implements DemoView {
 
   stop(): void {
     this.stopped = true;
-    this.signal();
+    this.wakeup.wake();
     this.renderer?.destroy();
     this.renderer = null;
     this.canvas?.remove();
-    this.device?.destroy();
-    this.device = null;
-  }
-
-  private signal(): void {
-    const wake = this.wake;
-    this.wake = null;
-    wake?.();
+    this.device.destroy();
   }
 
   private async loop(): Promise<void> {
@@ -119,7 +110,7 @@ export class RasterView implements DemoView {
         if (this.pending.rebuild) await this.createRenderer();
         if (this.pending.draw && this.renderer) await this.draw();
         else if (!this.pending.rebuild) {
-          await new Promise<void>((resolve) => (this.wake = resolve));
+          await this.wakeup.sleep();
           continue;
         }
       } catch (error) {
@@ -144,18 +135,12 @@ export class RasterView implements DemoView {
     host.onStatus(`Preparing the raster view of ${this.scene.name}…`, 'busy');
     const options = await host.rendererOptions();
     if (this.pending.rebuild || this.stopped) return;
-    if (!this.device) {
-      const device = (this.device = (await acquireGpuDevice()).device);
-      void device.lost.then((info) => {
-        if (this.device === device) this.device = null;
-        if (info.reason !== 'destroyed') this.fail(new Error(`GPU device lost: ${info.message}`));
-      });
-    }
+    const device = await this.device.acquire();
     const { settings, display } = host.context;
     const started = performance.now();
     let renderer: RasterRenderer;
     try {
-      renderer = await createRasterRenderer({ ...rasterOptions(this.scene, this.camera, options, display, settings), device: this.device });
+      renderer = await createRasterRenderer({ ...rasterOptions(this.scene, this.camera, options, display, settings), device });
     } catch (error) {
       if (!(error instanceof GpuRendererError)) throw error;
       // The scene is valid for the path tracer but not for the rasteriser: say which part.
