@@ -3,6 +3,8 @@
  * kind id and size both sides must agree on. The `package::layout::constants` WGSL module is
  * generated from `gpuConstants` (see shaders/layout-modules.ts), so nothing is kept equal by comment.
  */
+import { mediumStackLimit } from '../transport/medium-stack.ts';
+import { fraunhoferLinesNm } from '../transport/spectral-samples.ts';
 
 /** Slots of the u32 counter buffer (atomics in WGSL): queue lengths first, then statistics. */
 export const queueCounterSlots = {
@@ -106,6 +108,58 @@ export const ALPHA_MODE_MASK = 1;
 export const ALPHA_MODE_BLEND = 2;
 
 export const TEXTURE_BINDING_FLAG_SRGB = 1;
+
+// ---- Materials: KHR extensions, tables, media (materials subsystem) ----------------------------
+/**
+ * MaterialCore.flags bits, one per KHR material extension that changes the BSDF (set only when the
+ * extension's factors make a difference). SurfaceRecord.flags carries the same bits (above the
+ * SURFACE_FLAG_* bits), so the scatter kernel knows which packed parameters and blocks to read.
+ */
+export const MATERIAL_FLAG_SPECULAR = 1 << 8;
+export const MATERIAL_FLAG_TRANSMISSION = 1 << 9;
+/** A refractive solid: KHR_materials_volume with thicknessFactor > 0 and some transmission. */
+export const MATERIAL_FLAG_VOLUME = 1 << 10;
+export const MATERIAL_FLAG_CLEARCOAT = 1 << 11;
+export const MATERIAL_FLAG_SHEEN = 1 << 12;
+export const MATERIAL_FLAG_IRIDESCENCE = 1 << 13;
+export const MATERIAL_FLAG_ANISOTROPY = 1 << 14;
+export const MATERIAL_FLAG_DIFFUSE_TRANSMISSION = 1 << 15;
+export const MATERIAL_FLAG_DISPERSION = 1 << 16;
+/** Multiple-scattering energy compensation (the renderer's energyCompensation option). */
+export const MATERIAL_FLAG_ENERGY_COMPENSATION = 1 << 17;
+/** KHR_materials_ior ior = 0: the specular-glossiness compatibility mode, Fresnel = 1. */
+export const MATERIAL_FLAG_IOR_INFINITE = 1 << 18;
+/** Every extension bit (what evaluate-materials copies into SurfaceRecord.flags). */
+export const MATERIAL_EXTENSION_MASK = 0x7ff00;
+
+/** Heap offset of the MaterialTables directory (the tables, when present, open the heap). */
+export const MATERIAL_TABLES_OFFSET = 0;
+/**
+ * Resolution of the albedo tables (materials/energy): cosine nodes mu_i = i / (n - 1) and
+ * perceptual-roughness nodes r_j = j / (n - 1); dielectric tables add nodes over
+ * y = sign(x) sqrt(|x|), x = (eta - 1) / (eta + 1), in [-1, 1] (energy/albedo-tables.ts).
+ */
+export const ENERGY_TABLE_MU_NODES = 32;
+export const ENERGY_TABLE_ROUGHNESS_NODES = 32;
+export const DIELECTRIC_TABLE_MU_NODES = 16;
+export const DIELECTRIC_TABLE_ROUGHNESS_NODES = 16;
+export const DIELECTRIC_TABLE_ETA_NODES = 33;
+/** Sheen albedo table resolution (cosine x sheen roughness). */
+export const SHEEN_TABLE_NODES = 32;
+/** Spectral response table: RGB of one wavelength at SPECTRAL_TABLE_NODES nodes over [SPECTRAL_MIN_NM, SPECTRAL_MAX_NM]. */
+export const SPECTRAL_TABLE_NODES = 95;
+export const SPECTRAL_MIN_NM = 360;
+export const SPECTRAL_MAX_NM = 830;
+/** PathState.media holds MEDIUM_STACK_DEPTH 8-bit medium ids (the transport helpers' bound). */
+export const MEDIUM_STACK_DEPTH = mediumStackLimit;
+/** Medium ids are 8-bit: at most this many refractive-solid materials per scene. */
+export const MAX_MEDIA = 255;
+/** PathState.flags: the f16 wavelength of a dispersive path sits above this shift. */
+export const PATH_WAVELENGTH_SHIFT = 16;
+/** The Fraunhofer F, D and C lines of KHR_materials_dispersion's Abbe number, in tenths of a nanometre. */
+export const FRAUNHOFER_F_TENTHS_NM = Math.round(fraunhoferLinesNm.F * 10);
+export const FRAUNHOFER_D_TENTHS_NM = Math.round(fraunhoferLinesNm.D * 10);
+export const FRAUNHOFER_C_TENTHS_NM = Math.round(fraunhoferLinesNm.C * 10);
 
 /** TextureInfo.sampler bit fields. */
 export const SAMPLER_WRAP_REPEAT = 0;
@@ -211,6 +265,34 @@ export const gpuConstants: Readonly<Record<string, number>> = Object.freeze({
   ALPHA_MODE_MASK,
   ALPHA_MODE_BLEND,
   TEXTURE_BINDING_FLAG_SRGB,
+  MATERIAL_FLAG_SPECULAR,
+  MATERIAL_FLAG_TRANSMISSION,
+  MATERIAL_FLAG_VOLUME,
+  MATERIAL_FLAG_CLEARCOAT,
+  MATERIAL_FLAG_SHEEN,
+  MATERIAL_FLAG_IRIDESCENCE,
+  MATERIAL_FLAG_ANISOTROPY,
+  MATERIAL_FLAG_DIFFUSE_TRANSMISSION,
+  MATERIAL_FLAG_DISPERSION,
+  MATERIAL_FLAG_ENERGY_COMPENSATION,
+  MATERIAL_FLAG_IOR_INFINITE,
+  MATERIAL_EXTENSION_MASK,
+  MATERIAL_TABLES_OFFSET,
+  ENERGY_TABLE_MU_NODES,
+  ENERGY_TABLE_ROUGHNESS_NODES,
+  DIELECTRIC_TABLE_MU_NODES,
+  DIELECTRIC_TABLE_ROUGHNESS_NODES,
+  DIELECTRIC_TABLE_ETA_NODES,
+  SHEEN_TABLE_NODES,
+  SPECTRAL_TABLE_NODES,
+  SPECTRAL_MIN_NM,
+  SPECTRAL_MAX_NM,
+  MEDIUM_STACK_DEPTH,
+  MAX_MEDIA,
+  PATH_WAVELENGTH_SHIFT,
+  FRAUNHOFER_F_TENTHS_NM,
+  FRAUNHOFER_D_TENTHS_NM,
+  FRAUNHOFER_C_TENTHS_NM,
   SAMPLER_WRAP_REPEAT,
   SAMPLER_WRAP_CLAMP,
   SAMPLER_WRAP_MIRROR,

@@ -75,30 +75,142 @@ export const instanceLayout: StructLayout = defineStructLayout('Instance', 2, [
 
 /**
  * The core of a glTF metallic-roughness material. Extension blocks and texture bindings live in the
- * same vec4 heap (the `materials` binding) at the offsets (in vec4 units) stored here.
+ * same vec4 heap (the `materials` binding) at the offsets (in vec4 units) stored here; `flags`
+ * carries one MATERIAL_FLAG_* bit per KHR extension that changes the material's look, so kernels
+ * read a block only when its bit is set.
  */
-export const materialCoreLayout: StructLayout = defineStructLayout('MaterialCore', 2, [
+export const materialCoreLayout: StructLayout = defineStructLayout('MaterialCore', 3, [
   ['baseColor', 'vec4f', 'linear RGB + alpha'],
   ['emission', 'vec3f', 'emissiveFactor * emissiveStrength'],
   ['metallic', 'f32'],
   ['roughness', 'f32', 'perceptual; alpha = roughness^2'],
-  ['ior', 'f32', 'KHR_materials_ior'],
+  ['ior', 'f32', 'KHR_materials_ior (0: the specular-glossiness mode, MATERIAL_FLAG_IOR_INFINITE)'],
   ['alphaCutoff', 'f32'],
   ['flags', 'u32', 'MATERIAL_FLAG_* bits and the alpha mode'],
   ['baseColorTexture', 'u32', 'TextureBinding heap offset or INDEX_NONE'],
   ['metallicRoughnessTexture', 'u32'],
   ['normalTexture', 'u32'],
   ['emissiveTexture', 'u32'],
-  ['specular', 'u32', 'extension block heap offsets (INDEX_NONE: absent); KHR_materials_specular'],
-  ['transmission', 'u32', 'extension block heap offset or INDEX_NONE'],
-  ['volume', 'u32'],
-  ['clearcoat', 'u32'],
-  ['sheen', 'u32'],
-  ['iridescence', 'u32'],
-  ['anisotropy', 'u32'],
-  ['diffuseTransmission', 'u32'],
-  ['dispersion', 'f32', 'KHR_materials_dispersion'],
+  ['specular', 'u32', 'SpecularBlock heap offset (INDEX_NONE: absent)'],
+  ['transmission', 'u32', 'TransmissionBlock heap offset or INDEX_NONE'],
+  ['volume', 'u32', 'VolumeBlock'],
+  ['clearcoat', 'u32', 'ClearcoatBlock'],
+  ['sheen', 'u32', 'SheenBlock'],
+  ['iridescence', 'u32', 'IridescenceBlock'],
+  ['anisotropy', 'u32', 'AnisotropyBlock'],
+  ['diffuseTransmission', 'u32', 'DiffuseTransmissionBlock'],
+  ['dispersion', 'f32', 'KHR_materials_dispersion (20 / Abbe number)'],
   ['reserved', 'u32'],
+]);
+
+// KHR material extension blocks (heap records a MaterialCore points to). Factors are the glTF
+// factors; textures are TextureBinding heap offsets or INDEX_NONE.
+
+/** KHR_materials_specular. */
+export const specularBlockLayout: StructLayout = defineStructLayout('SpecularBlock', 1, [
+  ['specularColor', 'vec3f', 'specularColorFactor (may exceed 1)'],
+  ['specular', 'f32', 'specularFactor'],
+  ['specularTexture', 'u32', 'A channel'],
+  ['specularColorTexture', 'u32', 'RGB, sRGB'],
+  ['reserved0', 'u32'],
+  ['reserved1', 'u32'],
+]);
+
+/** KHR_materials_transmission. */
+export const transmissionBlockLayout: StructLayout = defineStructLayout('TransmissionBlock', 1, [
+  ['transmission', 'f32', 'transmissionFactor'],
+  ['transmissionTexture', 'u32', 'R channel'],
+  ['reserved0', 'u32'],
+  ['reserved1', 'u32'],
+]);
+
+/** KHR_materials_volume: present only for a refractive solid (thicknessFactor > 0). */
+export const volumeBlockLayout: StructLayout = defineStructLayout('VolumeBlock', 1, [
+  ['attenuation', 'vec3f', 'absorption coefficient -ln(attenuationColor) / attenuationDistance per unit length'],
+  ['thickness', 'f32', 'thicknessFactor (the path tracer takes thickness from the geometry)'],
+  ['thicknessTexture', 'u32', 'G channel (loaded for raster renderers)'],
+  ['medium', 'u32', 'medium id (1-based index into the media table)'],
+  ['reserved0', 'u32'],
+  ['reserved1', 'u32'],
+]);
+
+/** KHR_materials_clearcoat. */
+export const clearcoatBlockLayout: StructLayout = defineStructLayout('ClearcoatBlock', 1, [
+  ['clearcoat', 'f32', 'clearcoatFactor'],
+  ['roughness', 'f32', 'clearcoatRoughnessFactor'],
+  ['clearcoatTexture', 'u32', 'R channel'],
+  ['roughnessTexture', 'u32', 'G channel'],
+  ['normalTexture', 'u32', 'tangent-space normal map of the coat (scale in the binding)'],
+  ['reserved0', 'u32'],
+  ['reserved1', 'u32'],
+  ['reserved2', 'u32'],
+]);
+
+/** KHR_materials_sheen. */
+export const sheenBlockLayout: StructLayout = defineStructLayout('SheenBlock', 1, [
+  ['color', 'vec3f', 'sheenColorFactor'],
+  ['roughness', 'f32', 'sheenRoughnessFactor'],
+  ['colorTexture', 'u32', 'RGB, sRGB'],
+  ['roughnessTexture', 'u32', 'A channel'],
+  ['reserved0', 'u32'],
+  ['reserved1', 'u32'],
+]);
+
+/** KHR_materials_iridescence. */
+export const iridescenceBlockLayout: StructLayout = defineStructLayout('IridescenceBlock', 1, [
+  ['iridescence', 'f32', 'iridescenceFactor'],
+  ['ior', 'f32', 'iridescenceIor of the thin film'],
+  ['thicknessMinimum', 'f32', 'nanometres at thickness texture G = 0'],
+  ['thicknessMaximum', 'f32', 'nanometres at G = 1 (and without a texture)'],
+  ['iridescenceTexture', 'u32', 'R channel'],
+  ['thicknessTexture', 'u32', 'G channel'],
+  ['reserved0', 'u32'],
+  ['reserved1', 'u32'],
+]);
+
+/** KHR_materials_anisotropy. */
+export const anisotropyBlockLayout: StructLayout = defineStructLayout('AnisotropyBlock', 1, [
+  ['strength', 'f32', 'anisotropyStrength'],
+  ['rotationCos', 'f32', 'cos(anisotropyRotation)'],
+  ['rotationSin', 'f32', 'sin(anisotropyRotation)'],
+  ['texture', 'u32', 'RG direction in [-1, 1] tangent space, B strength'],
+]);
+
+/** KHR_materials_diffuse_transmission. */
+export const diffuseTransmissionBlockLayout: StructLayout = defineStructLayout('DiffuseTransmissionBlock', 1, [
+  ['color', 'vec3f', 'diffuseTransmissionColorFactor'],
+  ['diffuseTransmission', 'f32', 'diffuseTransmissionFactor'],
+  ['texture', 'u32', 'A channel'],
+  ['colorTexture', 'u32', 'RGB, sRGB'],
+  ['reserved0', 'u32'],
+  ['reserved1', 'u32'],
+]);
+
+/** One interior medium (a KHR_materials_volume material): what a path inside it sees. */
+export const mediumRecordLayout: StructLayout = defineStructLayout('MediumRecord', 1, [
+  ['attenuation', 'vec3f', 'absorption coefficient per unit length (Beer-Lambert)'],
+  ['ior', 'f32', 'index of refraction at the Fraunhofer d line (0: infinite)'],
+  ['dispersion', 'f32', 'KHR_materials_dispersion, 20 / Abbe number'],
+  ['reserved0', 'u32'],
+  ['reserved1', 'u32'],
+  ['reserved2', 'u32'],
+]);
+
+/**
+ * Directory of the material tables at heap offset MATERIAL_TABLES_OFFSET (present when a material
+ * needs one): precomputed albedos for layering and energy compensation, the media of
+ * KHR_materials_volume and the spectral response of dispersion. Offsets in vec4 units; tables of
+ * f32 hold four entries per vec4.
+ */
+export const materialTablesLayout: StructLayout = defineStructLayout('MaterialTables', 1, [
+  ['ggxAlbedo', 'u32', 'E(mu, r) of GGX reflection with F = 1, then its cosine-weighted average per r'],
+  ['dielectricAlbedo', 'u32', 'E(mu, r, eta) of dielectric GGX reflection with the exact Fresnel term, then averages per (eta, r)'],
+  ['dielectricTransmission', 'u32', 'E(mu, r, eta) of a rough dielectric interface, reflection + transmission'],
+  ['sheenAlbedo', 'u32', 'E(mu, r) of the Charlie sheen lobe'],
+  ['media', 'u32', 'MediumRecord array (medium id k at media + (k - 1) * size)'],
+  ['mediumCount', 'u32'],
+  ['spectral', 'u32', 'RGB response of single wavelengths (dispersion)'],
+  ['clearcoatAlbedo', 'u32', 'E(mu, r) of the clearcoat layer (dielectric reflection at ior 1.5)'],
 ]);
 
 /** A texture within the atlas: its mip chain occupies one block of one layer. */
@@ -292,7 +404,7 @@ export const frameUniformsLayout: StructLayout = defineStructLayout('FrameUnifor
 // ---- Transport state (bind group 3, per dispatch) --------------------------------------------------
 
 /** The persistent state of one path (one pixel sample of the wave), indexed by its slot. */
-export const pathStateLayout: StructLayout = defineStructLayout('PathState', 3, [
+export const pathStateLayout: StructLayout = defineStructLayout('PathState', 4, [
   ['throughput', 'vec3f', 'path weight beta'],
   ['pixel', 'u32', 'global pixel index (y * width + x)'],
   ['prevPosition', 'vec3f', 'last scattering vertex (the camera for camera rays)'],
@@ -300,10 +412,10 @@ export const pathStateLayout: StructLayout = defineStructLayout('PathState', 3, 
   ['prevNormal', 'u32', 'octahedral geometric normal at prevPosition'],
   ['sampleIndex', 'u32', 'index of this sample within the pixel sequence'],
   ['depth', 'u32', 'scattering vertices so far (pbrt-v4 depth)'],
-  ['flags', 'u32', 'PATH_FLAG_* bits'],
+  ['flags', 'u32', 'PATH_FLAG_* bits; high 16 bits: the f16 wavelength (nm) of a path that met a dispersive material, 0 otherwise'],
   ['etaScale', 'f32', 'accumulated eta^2 for Russian roulette across refraction'],
   ['coneSpread', 'f32', 'ray cone spread angle (the width travels with the ray)'],
-  ['media', 'u32', 'nested medium stack: four 8-bit medium ids, innermost in the low byte'],
+  ['media', 'u32', 'nested medium stack: four 8-bit medium ids, innermost in the low byte (0: none)'],
 ]);
 
 /** A ray waiting for closest-hit intersection; the ray queues are the two halves of `rays`. */
@@ -333,17 +445,20 @@ export const shadingWorkItemLayout: StructLayout = defineStructLayout('ShadingWo
 
 /**
  * The compact per-hit record material evaluation hands to the scatter kernel: the surface frame
- * and the resolved BSDF parameters after texture fetches and normal mapping.
+ * and the resolved BSDF parameters after texture fetches and normal mapping. KHR extension
+ * parameters that textures vary travel packed (pack2x16float pairs, colours in [0, 1] as unorm8);
+ * constant ones (iridescence IOR, the medium, dispersion) the scatter kernel re-reads from the
+ * material heap. `flags` carries the material's MATERIAL_FLAG_* extension bits.
  */
-export const surfaceRecordLayout: StructLayout = defineStructLayout('SurfaceRecord', 2, [
+export const surfaceRecordLayout: StructLayout = defineStructLayout('SurfaceRecord', 3, [
   ['position', 'vec3f'],
   ['slot', 'u32'],
   ['wo', 'vec3f', 'unit direction towards the previous vertex'],
-  ['flags', 'u32', 'SURFACE_FLAG_* bits'],
+  ['flags', 'u32', 'SURFACE_FLAG_* bits | MATERIAL_FLAG_* extension bits'],
   ['ng', 'vec3f', 'unit geometric normal on the front (counter-clockwise) side'],
   ['lightIndex', 'u32', 'light record of an emitting triangle, or INDEX_NONE'],
   ['shadingNormal', 'u32', 'octahedral, front side'],
-  ['tangent', 'u32', 'octahedral, orthogonal to the shading normal'],
+  ['tangent', 'u32', 'octahedral, orthogonal to the shading normal (the anisotropy direction when anisotropic)'],
   ['instance', 'u32'],
   ['material', 'u32'],
   ['emission', 'vec3f', 'emitted radiance towards wo (zero from a single-sided back face)'],
@@ -352,10 +467,10 @@ export const surfaceRecordLayout: StructLayout = defineStructLayout('SurfaceReco
   ['metallic', 'f32'],
   ['roughness', 'f32'],
   ['ior', 'f32'],
-  ['specular', 'f32', 'KHR_materials_specular factor'],
-  ['transmission', 'f32'],
-  ['specularColor', 'vec3f'],
   ['coneWidth', 'f32', 'ray cone width at the hit'],
+  ['clearcoatNormal', 'u32', 'octahedral clearcoat normal'],
+  ['layers0', 'vec4u', 'f16 pairs: (specular, transmission), (specularColor.rg), (specularColor.b, diffuseTransmission), (clearcoat, clearcoatRoughness)'],
+  ['layers1', 'vec4u', 'f16 pairs: (sheenRoughness, anisotropy), (iridescence, iridescenceThickness nm); unorm8: sheenColor, diffuseTransmissionColor'],
 ]);
 
 /** An any-hit query carrying the contribution it adds if unoccluded (NEE, pbrt-v4 style). */
@@ -450,6 +565,16 @@ export const wavefrontRecordLayouts = {
   AlphaPrimitive: alphaPrimitiveLayout,
   Instance: instanceLayout,
   MaterialCore: materialCoreLayout,
+  SpecularBlock: specularBlockLayout,
+  TransmissionBlock: transmissionBlockLayout,
+  VolumeBlock: volumeBlockLayout,
+  ClearcoatBlock: clearcoatBlockLayout,
+  SheenBlock: sheenBlockLayout,
+  IridescenceBlock: iridescenceBlockLayout,
+  AnisotropyBlock: anisotropyBlockLayout,
+  DiffuseTransmissionBlock: diffuseTransmissionBlockLayout,
+  MediumRecord: mediumRecordLayout,
+  MaterialTables: materialTablesLayout,
   TextureInfo: textureInfoLayout,
   TextureBinding: textureBindingLayout,
   LightRecord: lightRecordLayout,
@@ -476,7 +601,11 @@ export const wavefrontRecordLayouts = {
 
 /** Records stored in vec4 heaps get generated WGSL loaders (`load_<snake name>(heap offset)`). */
 export const heapRecordLayouts = {
-  materials: [materialCoreLayout, textureInfoLayout, textureBindingLayout],
+  materials: [
+    materialCoreLayout, textureInfoLayout, textureBindingLayout, specularBlockLayout, transmissionBlockLayout, volumeBlockLayout,
+    clearcoatBlockLayout, sheenBlockLayout, iridescenceBlockLayout, anisotropyBlockLayout, diffuseTransmissionBlockLayout,
+    mediumRecordLayout, materialTablesLayout,
+  ],
   lights: [lightRecordLayout, lightSelectionEntryLayout, areaLightLayout, punctualLightLayout, lightTreeNodeLayout, environmentTableEntryLayout, environmentPortalLayout],
 } as const;
 

@@ -1,25 +1,110 @@
 /**
- * Independent double-precision reference of the glTF 2.0 metallic-roughness BRDF, written straight
- * from the glTF 2.0 specification, Appendix B "BRDF Implementation" (in the textbook forms, not the
- * f32-stable rearrangements of the WGSL), plus the sampling pdf of `bsdf_sample` in
- * src/shaders/wgsl/bsdf-gltf.wgsl. Tests use it to check the shader; it is not used for rendering.
+ * Independent double-precision reference of the glTF BSDF of gltf-bsdf.wesl. The metallic-roughness
+ * core is written straight from the glTF 2.0 specification, Appendix B "BRDF Implementation" (in
+ * the textbook forms, not the f32-stable rearrangements of the WGSL); the KHR extensions follow
+ * each specification and the layering the WGSL module documents, with the albedo tables read
+ * through the same interpolation (table-lookup.ts). Also the sampling pdf of its `sample`. Tests
+ * use it to check the shader; it is not used for rendering.
  *
- * Directions are unit vectors in the local shading frame (z = shading normal); wo points towards
- * the viewer, wi towards the light.
+ * Directions are unit vectors in the local shading frame (z = shading normal, x = the anisotropy
+ * direction); wo points towards the viewer (wo.z > 0), wi towards the light.
  */
 
+import {
+  MATERIAL_FLAG_ANISOTROPY,
+  MATERIAL_FLAG_CLEARCOAT,
+  MATERIAL_FLAG_DIFFUSE_TRANSMISSION,
+  MATERIAL_FLAG_ENERGY_COMPENSATION,
+  MATERIAL_FLAG_IOR_INFINITE,
+  MATERIAL_FLAG_IRIDESCENCE,
+  MATERIAL_FLAG_SHEEN,
+  MATERIAL_FLAG_SPECULAR,
+  MATERIAL_FLAG_TRANSMISSION,
+  MATERIAL_FLAG_VOLUME,
+} from '../gpu-layout/constants.ts';
 import { luminance } from '../lighting/emissive-lights.ts';
+import {
+  dielectricEtaCoordinate,
+  lookupClearcoatAlbedo,
+  lookupDielectricAlbedo,
+  lookupDielectricAlbedoAverage,
+  lookupDielectricInterfaceAlbedo,
+  lookupGgxAlbedo,
+  lookupSheenAlbedo,
+} from './energy/table-lookup.ts';
+import { dielectricFresnelRgb, fresnelDielectric, fresnelSchlick, iorToF0, iridescentFresnel } from './reference/fresnel.ts';
+import { anisotropicAlphas, ggxDAniso, ggxG2, ggxVisibleNormalPdf, type Alphas } from './reference/microfacet.ts';
+import { sheenBrdf } from './reference/sheen.ts';
+import { cross, maxComponent, normalize as normalize3 } from './reference/vector.ts';
+
+export { fresnelDielectric };
 
 export type Vec3 = readonly [number, number, number];
 
+/** A glTF material as the BSDF sees it; the optional fields are the KHR extensions (absent: not used). */
 export interface GltfBsdfMaterial {
   /** Linear RGB in [0, 1]. */
   baseColor: Vec3;
   metallic: number;
   /** Perceptual roughness; alpha = roughness^2. */
   roughness: number;
-  /** KHR_materials_ior (default 1.5). */
+  /**
+   * KHR_materials_ior (default 1.5); with extensions, the relative index n_t / n_i across the
+   * surface seen from wo's side. Infinity: KHR_materials_ior's ior = 0 mode (Fresnel = 1).
+   */
   ior: number;
+  /** KHR_materials_specular. */
+  specular?: { factor: number; color: Vec3 };
+  /** KHR_materials_transmission; `refractive` with KHR_materials_volume, else thin-walled. */
+  transmission?: { factor: number; refractive: boolean };
+  /** KHR_materials_diffuse_transmission. */
+  diffuseTransmission?: { factor: number; color: Vec3 };
+  /** KHR_materials_clearcoat; `normal` in the local frame (default +z). */
+  clearcoat?: { factor: number; roughness: number; normal?: Vec3 };
+  /** KHR_materials_sheen. */
+  sheen?: { color: Vec3; roughness: number };
+  /** KHR_materials_iridescence (thickness in nm). */
+  iridescence?: { factor: number; thickness: number; ior: number };
+  /** KHR_materials_anisotropy strength along the local x axis. */
+  anisotropy?: number;
+  /** Multiple-scattering energy compensation. */
+  energyCompensation?: boolean;
+}
+
+/** The MATERIAL_FLAG_* bits the GPU BSDF's Params.ext holds for a material. */
+export function gltfBsdfExtensionFlags(m: GltfBsdfMaterial): number {
+  let f = 0;
+  if (m.specular) f |= MATERIAL_FLAG_SPECULAR;
+  if (m.transmission) f |= MATERIAL_FLAG_TRANSMISSION | (m.transmission.refractive ? MATERIAL_FLAG_VOLUME : 0);
+  if (m.diffuseTransmission) f |= MATERIAL_FLAG_DIFFUSE_TRANSMISSION;
+  if (m.clearcoat) f |= MATERIAL_FLAG_CLEARCOAT;
+  if (m.sheen) f |= MATERIAL_FLAG_SHEEN;
+  if (m.iridescence) f |= MATERIAL_FLAG_IRIDESCENCE;
+  if (m.anisotropy !== undefined) f |= MATERIAL_FLAG_ANISOTROPY;
+  if (m.energyCompensation) f |= MATERIAL_FLAG_ENERGY_COMPENSATION;
+  if (!Number.isFinite(m.ior)) f |= MATERIAL_FLAG_IOR_INFINITE;
+  return f;
+}
+
+/** The 32 floats of the GPU BSDF's PackedLobeParams for a material (gltf-bsdf.wesl unpack_params). */
+export function packGltfBsdfParams(m: GltfBsdfMaterial): number[] {
+  const ext = gltfBsdfExtensionFlags(m);
+  const cn = m.clearcoat?.normal ?? [0, 0, 1];
+  return [
+    ...m.baseColor, m.metallic,
+    m.roughness, Number.isFinite(m.ior) ? m.ior : 0, ext, m.anisotropy ?? 0,
+    ...(m.specular?.color ?? [1, 1, 1]), m.specular?.factor ?? 1,
+    ...(m.diffuseTransmission?.color ?? [1, 1, 1]), m.diffuseTransmission?.factor ?? 0,
+    ...cn, m.clearcoat?.factor ?? 0,
+    ...(m.sheen?.color ?? [0, 0, 0]), m.sheen?.roughness ?? 0,
+    m.transmission?.factor ?? 0, m.clearcoat?.roughness ?? 0, m.iridescence?.factor ?? 0, m.iridescence?.thickness ?? 0,
+    m.iridescence?.ior ?? 1.3, 0, 0, 0,
+  ];
+}
+
+/** Whether a material uses any extension (the plain core otherwise). */
+function extended(m: GltfBsdfMaterial): boolean {
+  return gltfBsdfExtensionFlags(m) !== 0;
 }
 
 /** Below this alpha the specular lobe is a delta (pbrt-v4 EffectivelySmooth); must match GLTF_DELTA_ALPHA. */
@@ -32,27 +117,6 @@ function dot(a: Vec3, b: Vec3): number {
 function normalize(a: Vec3): Vec3 {
   const l = Math.hypot(a[0], a[1], a[2]);
   return [a[0] / l, a[1] / l, a[2] / l];
-}
-
-/**
- * Unpolarised Fresnel reflectance of a smooth dielectric (pbrt-v4 FrDielectric): cosThetaI on the
- * incident side (negative: from inside, eta inverted), eta = n_t / n_i.
- */
-export function fresnelDielectric(cosThetaI: number, eta: number): number {
-  // An index-matched interface reflects nothing (the limit of the formulas below, without rounding noise).
-  if (eta === 1) return 0;
-  let cosI = Math.min(1, Math.max(-1, cosThetaI));
-  let e = eta;
-  if (cosI < 0) {
-    e = 1 / e;
-    cosI = -cosI;
-  }
-  const sin2T = (1 - cosI * cosI) / (e * e);
-  if (sin2T >= 1) return 1;
-  const cosT = Math.sqrt(1 - sin2T);
-  const rParl = (e * cosI - cosT) / (e * cosI + cosT);
-  const rPerp = (cosI - e * cosT) / (cosI + e * cosT);
-  return 0.5 * (rParl * rParl + rPerp * rPerp);
 }
 
 /** Appendix B: D = alpha^2 chi+(NdotH) / (pi ((NdotH)^2 (alpha^2 - 1) + 1)^2). */
@@ -84,6 +148,7 @@ function schlick(f0: number, cos: number): number {
 
 /** f(wo, wi) without the cosine, non-delta lobes only (a delta specular lobe contributes nothing here). */
 export function gltfBsdfEval(m: GltfBsdfMaterial, wo: Vec3, wi: Vec3): [number, number, number] {
+  if (extended(m)) return [...extendedEval(m, wo, wi).f] as [number, number, number];
   if (wo[2] <= 0 || wi[2] <= 0) return [0, 0, 0];
   const alpha = m.roughness * m.roughness;
   const h = normalize([wo[0] + wi[0], wo[1] + wi[1], wo[2] + wi[2]]);
@@ -113,6 +178,7 @@ export function gltfSpecularProbability(m: GltfBsdfMaterial, cosO: number): numb
 
 /** Solid-angle pdf of bsdf_sample's non-delta lobes: p_spec G1(wo) D(H) / (4 wo.z) + (1 - p_spec) cos / pi. */
 export function gltfBsdfPdf(m: GltfBsdfMaterial, wo: Vec3, wi: Vec3): number {
+  if (extended(m)) return extendedEval(m, wo, wi).pdf;
   if (wo[2] <= 0 || wi[2] <= 0) return 0;
   const alpha = m.roughness * m.roughness;
   const pSpec = gltfSpecularProbability(m, wo[2]);
@@ -122,4 +188,268 @@ export function gltfBsdfPdf(m: GltfBsdfMaterial, wo: Vec3, wi: Vec3): number {
     pdf += (pSpec * smithG1(wo[2], alpha) * ggxD(h[2], alpha)) / (4 * wo[2]);
   }
   return pdf;
+}
+
+// ---- The KHR extensions (mirrors gltf-bsdf.wesl) -------------------------------------------------
+
+const clearcoatIor = 1.5;
+
+const add3 = (a: Vec3, b: Vec3): Vec3 => [a[0] + b[0], a[1] + b[1], a[2] + b[2]];
+const mul3 = (a: Vec3, b: Vec3): Vec3 => [a[0] * b[0], a[1] * b[1], a[2] * b[2]];
+const scale3 = (a: Vec3, k: number): Vec3 => [a[0] * k, a[1] * k, a[2] * k];
+const mix3 = (a: Vec3, b: Vec3, t: number): Vec3 => [a[0] + (b[0] - a[0]) * t, a[1] + (b[1] - a[1]) * t, a[2] + (b[2] - a[2]) * t];
+
+function alphasOf(m: GltfBsdfMaterial): Alphas {
+  if (m.anisotropy !== undefined) return anisotropicAlphas(m.roughness, m.anisotropy);
+  const a = m.roughness * m.roughness;
+  return { x: a, y: a };
+}
+
+const smoothAlphas = (a: Alphas): boolean => Math.max(a.x, a.y) < gltfDeltaAlpha;
+
+function plainDielectricFresnel(m: GltfBsdfMaterial, cos: number): Vec3 {
+  if (m.specular || !Number.isFinite(m.ior)) {
+    return dielectricFresnelRgb(cos, { eta: m.ior, specular: m.specular?.factor ?? 1, specularColor: m.specular?.color ?? [1, 1, 1] });
+  }
+  const f = fresnelDielectric(cos, m.ior);
+  return [f, f, f];
+}
+
+/** The dielectric Fresnel term at cos = wo.h: KHR_materials_specular, then the thin film mixed in. */
+export function gltfDielectricFresnel(m: GltfBsdfMaterial, cos: number): Vec3 {
+  const f = plainDielectricFresnel(m, cos);
+  if (!m.iridescence) return f;
+  const specular = m.specular?.factor ?? 1;
+  const color = m.specular?.color ?? [1, 1, 1];
+  const f0Ior = Number.isFinite(m.ior) ? iorToF0(m.ior) : 1;
+  const baseF0: Vec3 = [0, 1, 2].map((c) => Math.min(f0Ior * color[c]!, 1) * specular) as unknown as Vec3;
+  return mix3(f, iridescentFresnel(1, m.iridescence.ior, baseF0, m.iridescence.thickness, cos), m.iridescence.factor);
+}
+
+function metalFresnel(m: GltfBsdfMaterial, cos: number): Vec3 {
+  const f = fresnelSchlick(m.baseColor, cos);
+  if (!m.iridescence) return f;
+  return mix3(f, iridescentFresnel(1, m.iridescence.ior, m.baseColor, m.iridescence.thickness, cos), m.iridescence.factor);
+}
+
+function frameAround(n: Vec3): { t: Vec3; b: Vec3; n: Vec3 } {
+  const a: Vec3 = Math.abs(n[0]) > 0.9 ? [0, 1, 0] : [1, 0, 0];
+  const t = normalize3(cross(a, n));
+  return { t, b: cross(n, t), n };
+}
+
+const toLocal = (f: { t: Vec3; b: Vec3; n: Vec3 }, v: Vec3): Vec3 => [dot(v, f.t), dot(v, f.b), dot(v, f.n)];
+
+function coatOf(m: GltfBsdfMaterial, wo: Vec3): { wo: Vec3; frame: { t: Vec3; b: Vec3; n: Vec3 }; scale: number; alpha: number } {
+  const c = m.clearcoat!;
+  const frame = frameAround(c.normal ?? [0, 0, 1]);
+  const woC = toLocal(frame, wo);
+  const scale = woC[2] > 0 ? 1 - c.factor * lookupClearcoatAlbedo(woC[2], c.roughness) : 1;
+  return { wo: woC, frame, scale, alpha: c.roughness * c.roughness };
+}
+
+function sheenScaling(m: GltfBsdfMaterial, cosO: number, cosI: number): number {
+  const s = maxComponent(m.sheen!.color);
+  return Math.min(1 - s * lookupSheenAlbedo(cosO, m.sheen!.roughness), 1 - s * lookupSheenAlbedo(Math.abs(cosI), m.sheen!.roughness));
+}
+
+function dielectricSpecularAlbedo(m: GltfBsdfMaterial, cos: number): { value: number; average: number } {
+  const r = m.roughness;
+  const y = dielectricEtaCoordinate(m.ior);
+  const eF = lookupDielectricAlbedo(cos, r, y);
+  const avgF = lookupDielectricAlbedoAverage(r, y);
+  if (!m.specular && Number.isFinite(m.ior)) return { value: eF, average: avgF };
+  const e1 = lookupGgxAlbedo(cos, r);
+  const avg1 = lookupDielectricAlbedoAverage(r, 1);
+  const f0Ior = Number.isFinite(m.ior) ? iorToF0(m.ior) : 1;
+  const spec = m.specular?.factor ?? 1;
+  const color = m.specular?.color ?? [1, 1, 1];
+  const f0Max = Math.max(...[0, 1, 2].map((c) => Math.min(f0Ior * color[c]!, 1) * spec));
+  const shaped = f0Ior >= 1 ? e1 : (eF - f0Ior * e1) / (1 - f0Ior);
+  const shapedAvg = f0Ior >= 1 ? avg1 : (avgF - f0Ior * avg1) / (1 - f0Ior);
+  return { value: f0Max * e1 + (spec - f0Max) * shaped, average: f0Max * avg1 + (spec - f0Max) * shapedAvg };
+}
+
+function diffuseWeight(m: GltfBsdfMaterial, cosO: number, cosI: number, fH: number): number {
+  if (m.energyCompensation) {
+    const eo = dielectricSpecularAlbedo(m, cosO);
+    const ei = dielectricSpecularAlbedo(m, Math.abs(cosI));
+    if (eo.average >= 1) return 0;
+    return Math.max(0, ((1 - eo.value) * (1 - ei.value)) / (1 - eo.average));
+  }
+  return 1 - fH;
+}
+
+function metalCompensation(m: GltfBsdfMaterial, cosO: number): Vec3 {
+  if (!m.energyCompensation) return [1, 1, 1];
+  const e = lookupGgxAlbedo(cosO, m.roughness);
+  return [0, 1, 2].map((c) => 1 + (m.baseColor[c]! * (1 - e)) / e) as unknown as Vec3;
+}
+
+function transmissionCompensation(m: GltfBsdfMaterial, cosO: number): number {
+  if (!m.energyCompensation) return 1;
+  const e = m.transmission?.refractive ? lookupDielectricInterfaceAlbedo(cosO, m.roughness, dielectricEtaCoordinate(m.ior)) : lookupGgxAlbedo(cosO, m.roughness);
+  return 1 / e;
+}
+
+interface Weights {
+  coat: number;
+  sheen: number;
+  microfacet: number;
+  diffuse: number;
+  diffuseReflect: number;
+}
+
+/** Lobe selection probabilities at wo (gltf-bsdf.wesl lobe_weights). */
+export function gltfLobeWeights(m: GltfBsdfMaterial, wo: Vec3): Weights {
+  const f = maxComponent(plainDielectricFresnel(m, wo[2]));
+  const mt = m.metallic;
+  const t = m.transmission?.factor ?? 0;
+  const dt = m.diffuseTransmission?.factor ?? 0;
+  const lum = luminance(m.baseColor);
+  let microfacet = (1 - mt) * f + mt;
+  let diffuse = (1 - mt) * (1 - f) * lum;
+  let diffuseReflect = 1;
+  if (m.transmission || m.diffuseTransmission) {
+    microfacet += (1 - mt) * (1 - f) * t * lum;
+    const dr = (1 - dt) * lum;
+    const dtr = dt * luminance(m.diffuseTransmission?.color ?? [1, 1, 1]);
+    diffuse = (1 - mt) * (1 - f) * (1 - t) * (dr + dtr);
+    diffuseReflect = dr + dtr > 0 ? dr / (dr + dtr) : 1;
+  }
+  let coat = 0;
+  let sheen = 0;
+  if (m.clearcoat || m.sheen) {
+    let below = 1;
+    if (m.clearcoat) {
+      const cosC = dot(wo, m.clearcoat.normal ?? [0, 0, 1]);
+      coat = cosC > 0 ? m.clearcoat.factor * fresnelDielectric(cosC, clearcoatIor) : 0;
+      below = 1 - coat;
+    }
+    if (m.sheen) {
+      const s = maxComponent(m.sheen.color) * Math.min(lookupSheenAlbedo(wo[2], m.sheen.roughness), 1);
+      sheen = below * s;
+      below *= 1 - s;
+    }
+    microfacet *= below;
+    diffuse *= below;
+  }
+  const total = coat + sheen + microfacet + diffuse;
+  if (total <= 0) return { coat: 0, sheen: 0, microfacet: 0, diffuse: 1, diffuseReflect: 1 };
+  return { coat: coat / total, sheen: sheen / total, microfacet: microfacet / total, diffuse: diffuse / total, diffuseReflect };
+}
+
+/** Probability of reflection among the microfacet lobes given the plain dielectric F (largest channel) at h. */
+export function gltfReflectProbability(m: GltfBsdfMaterial, f: number): number {
+  if (!m.transmission) return 1;
+  const mt = m.metallic;
+  const r = mt + (1 - mt) * f;
+  const t = (1 - mt) * (1 - f) * m.transmission.factor * luminance(m.baseColor);
+  return r + t > 0 ? r / (r + t) : 1;
+}
+
+function refractionHalfVector(wo: Vec3, wi: Vec3, eta: number): Vec3 | null {
+  const v: Vec3 = [eta * wi[0] + wo[0], eta * wi[1] + wo[1], eta * wi[2] + wo[2]];
+  const l = Math.hypot(v[0], v[1], v[2]);
+  if (!(l > 0)) return null;
+  const h = scale3(v, 1 / l);
+  return h[2] < 0 ? scale3(h, -1) : h;
+}
+
+function baseEval(m: GltfBsdfMaterial, w: Weights, wo: Vec3, wi: Vec3): { f: Vec3; microfacetPdf: number; diffusePdf: number } {
+  const a = alphasOf(m);
+  const smooth = smoothAlphas(a);
+  const mt = m.metallic;
+  const t = m.transmission?.factor ?? 0;
+  const dt = m.diffuseTransmission?.factor ?? 0;
+  const upper = wi[2] > 0;
+  let f: Vec3 = [0, 0, 0];
+  let microfacetPdf = 0;
+  let diffusePdf = 0;
+  // One microfacet normal for the pair (gltf-bsdf.wesl base_eval).
+  const wm: Vec3 = [wi[0], wi[1], Math.abs(wi[2])];
+  let h = normalize(add3(wo, wm));
+  let refracted = false;
+  if (!upper && m.transmission?.refractive && t > 0 && !smooth && m.ior !== 1) {
+    const hr = refractionHalfVector(wo, wi, m.ior);
+    if (hr && hr[2] > 0 && dot(hr, wi) < 0 && dot(hr, wo) > 0) {
+      h = hr;
+      refracted = true;
+    }
+  }
+  const cosH = Math.min(1, Math.max(0, dot(wo, h)));
+  const fd = gltfDielectricFresnel(m, cosH);
+  const fMax = maxComponent(fd);
+  const pf = m.iridescence && m.transmission ? maxComponent(plainDielectricFresnel(m, cosH)) : fMax;
+  const weight = diffuseWeight(m, wo[2], wi[2], fMax);
+  if (upper) {
+    if (!smooth) {
+      const spec = (ggxDAniso(h, a) * ggxG2(wo, wi, a)) / (4 * wo[2] * wi[2]);
+      const metal = mul3(metalFresnel(m, cosH), metalCompensation(m, wo[2]));
+      let dielectric = fd;
+      if (m.energyCompensation && m.transmission) dielectric = scale3(dielectric, t * transmissionCompensation(m, wo[2]) + (1 - t));
+      f = scale3(add3(scale3(metal, mt), scale3(dielectric, 1 - mt)), spec);
+      microfacetPdf = (ggxVisibleNormalPdf(wo, h, a) / (4 * dot(wo, h))) * gltfReflectProbability(m, pf);
+    }
+    f = add3(f, scale3(m.baseColor, ((1 - mt) * weight * (1 - t) * (1 - dt)) / Math.PI));
+    diffusePdf = (w.diffuseReflect * wi[2]) / Math.PI;
+    return { f, microfacetPdf, diffusePdf };
+  }
+  if (m.transmission && !smooth && t > 0) {
+    const k = (1 - mt) * t * (1 - fMax) * transmissionCompensation(m, wo[2]);
+    if (refracted) {
+      const denom = (dot(wi, h) + cosH / m.ior) ** 2;
+      const btdf = (ggxDAniso(h, a) * ggxG2(wo, wi, a) * Math.abs((dot(wi, h) * cosH) / (denom * wi[2] * wo[2]))) / (m.ior * m.ior);
+      f = scale3(m.baseColor, k * btdf);
+      microfacetPdf = ((ggxVisibleNormalPdf(wo, h, a) * Math.abs(dot(wi, h))) / denom) * (1 - gltfReflectProbability(m, pf));
+    } else if (!m.transmission.refractive) {
+      const btdf = (ggxDAniso(h, a) * ggxG2(wo, wm, a)) / (4 * wo[2] * wm[2]);
+      f = scale3(m.baseColor, k * btdf);
+      microfacetPdf = (ggxVisibleNormalPdf(wo, h, a) / (4 * dot(wo, h))) * (1 - gltfReflectProbability(m, pf));
+    }
+  }
+  if (m.diffuseTransmission && dt > 0) {
+    f = add3(f, scale3(m.diffuseTransmission.color, ((1 - mt) * (1 - t) * dt * weight) / Math.PI));
+    diffusePdf = ((1 - w.diffuseReflect) * -wi[2]) / Math.PI;
+  }
+  return { f, microfacetPdf, diffusePdf };
+}
+
+/** f (without the cosine) and the sampling pdf of the composed BSDF, non-delta parts only. */
+export function extendedEval(m: GltfBsdfMaterial, wo: Vec3, wi: Vec3): { f: Vec3; pdf: number } {
+  if (wo[2] <= 0 || wi[2] === 0) return { f: [0, 0, 0], pdf: 0 };
+  if (wi[2] < 0 && !m.transmission && !m.diffuseTransmission) return { f: [0, 0, 0], pdf: 0 };
+  const w = gltfLobeWeights(m, wo);
+  const base = baseEval(m, w, wo, wi);
+  let f = base.f;
+  let pdf = w.microfacet * base.microfacetPdf + w.diffuse * base.diffusePdf;
+  if (m.clearcoat || m.sheen) {
+    let above: Vec3 = [0, 0, 0];
+    let coatScale = 1;
+    if (m.clearcoat) {
+      const coat = coatOf(m, wo);
+      coatScale = coat.scale;
+      const wiC = toLocal(coat.frame, wi);
+      if (coat.wo[2] > 0 && wiC[2] > 0 && wi[2] > 0 && coat.alpha >= gltfDeltaAlpha) {
+        const h = normalize(add3(coat.wo, wiC));
+        const a = { x: coat.alpha, y: coat.alpha };
+        const spec = (ggxDAniso(h, a) * ggxG2(coat.wo, wiC, a)) / (4 * coat.wo[2] * wiC[2]);
+        const v = m.clearcoat.factor * fresnelDielectric(dot(coat.wo, h), clearcoatIor) * spec;
+        above = [v, v, v];
+        pdf += (w.coat * ggxVisibleNormalPdf(coat.wo, h, a)) / (4 * dot(coat.wo, h));
+      }
+    }
+    let sheenScale = 1;
+    if (m.sheen) {
+      sheenScale = sheenScaling(m, wo[2], wi[2]);
+      if (wi[2] > 0) {
+        const h = normalize(add3(wo, wi));
+        const e = lookupSheenAlbedo(wo[2], m.sheen.roughness);
+        above = add3(above, scale3(m.sheen.color, (coatScale * sheenBrdf(wo[2], wi[2], h[2], m.sheen.roughness)) / Math.max(1, e)));
+        pdf += (w.sheen * wi[2]) / Math.PI;
+      }
+    }
+    f = add3(above, scale3(f, coatScale * Math.max(sheenScale, 0)));
+  }
+  return { f, pdf };
 }

@@ -28,6 +28,8 @@ export interface WavefrontPathTracingComputeConfig {
   output: WavefrontOutputConfig;
   /** Environment map or sky, punctual and area lights, portals, light sampler (src/lighting/lighting-options.ts). */
   lighting: LightingConfig;
+  /** Multiple-scattering energy compensation of rough microfacet lobes (materials). */
+  energyCompensation: boolean;
 }
 
 const toneMappings: readonly WavefrontToneMapping[] = ['neutral', 'aces', 'linear', 'agx'];
@@ -39,6 +41,7 @@ export const wavefrontOptionNames: ReadonlySet<string> = new Set<keyof Wavefront
   ...outputOptionNames,
   // Lighting (src/lighting/lighting-options.ts).
   'environmentMap', 'environmentLighting', 'environmentPortals', 'environmentPortalMode', 'lightSampler', 'environmentSampling',
+  'energyCompensation',
 ]);
 
 /** Validates the non-geometry options; every error names its field. */
@@ -67,6 +70,10 @@ export function createWavefrontPathTracingComputeConfig(options: Partial<Wavefro
   if (!toneMappings.includes(toneMapping)) fail('INVALID_OPTION', 'toneMapping', `expected one of ${toneMappings.join(', ')}`);
   const exposure = options.exposure === undefined ? 1 : requireNumberInRange(options.exposure, 'exposure', { min: 0 });
   if (options.aovs !== undefined && typeof options.aovs !== 'boolean') fail('INVALID_OPTION', 'aovs', 'expected a boolean');
+  if (options.energyCompensation !== undefined && typeof options.energyCompensation !== 'boolean') fail('INVALID_OPTION', 'energyCompensation', 'expected a boolean');
   const output = parseOutputOptions(options);
-  return { width, height, maxDepth, samplesPerPixel, tileSize, seed, camera, environment, toneMapping, exposure, aovs: options.aovs ?? false, output, lighting };
+  return {
+    width, height, maxDepth, samplesPerPixel, tileSize, seed, camera, environment, toneMapping, exposure, aovs: options.aovs ?? false, output, lighting,
+    energyCompensation: options.energyCompensation ?? false,
+  };
 }

@@ -30,6 +30,8 @@ import { pathTracerPipelines, type PathTracerPipelines } from './pipelines.ts';
 import { FilmDisplay } from './presentation.ts';
 import { prepareScene, type PreparedScene } from './scene/prepare-scene.ts';
 import { vertexStreamBytes } from './scene/pack-vertices.ts';
+import { materialFeatures } from './scene/material-features.ts';
+import { materialHeapCells } from './scene/pack-materials.ts';
 import { planListWaves, planWaves, tileCount, type Wave } from './tiling.ts';
 import type {
   WavefrontFrameStats,
@@ -66,8 +68,8 @@ function planInput(config: WavefrontPathTracingComputeConfig, scene: NormalizedS
     alphaPrimitiveCount: alpha,
     instanceCount: scene.instances.length + scene.sceneObjects.length,
     lightCount: lights,
-    // Upper bound: a core (7 cells) and four texture bindings (3 cells each) per material.
-    materialCells: (scene.materials.length + scene.sceneObjects.length) * 19,
+    // Cores, extension blocks and texture bindings (the exact heap, tables included, is checked after packing).
+    materialCells: materialHeapCells([...scene.materials, ...scene.sceneObjects.map((o) => o.material)]),
   };
 }
 
@@ -111,6 +113,7 @@ function sceneFeatures(prepared: PreparedScene, lighting: GpuLighting, config: W
     FEATURE_AOVS: outputFeatures(config).aovs,
     FEATURE_FILM_MOMENTS: outputFeatures(config).moments,
     FEATURE_ADAPTIVE_SAMPLING: config.output.adaptive !== null,
+    ...materialFeatures(prepared.uses.materials),
   };
 }
 
@@ -134,7 +137,7 @@ export async function createWavefrontPathTracingComputeRenderer(options: Wavefro
     const limits = acquired.device.limits;
     const estimate = planInput(config, scene);
     checkBufferLimits(limits, planBuffers(estimate));
-    const prepared = await prepareScene(scene, { maxTextureDimension2D: limits.maxTextureDimension2D, maxTextureArrayLayers: limits.maxTextureArrayLayers });
+    const prepared = await prepareScene(scene, { maxTextureDimension2D: limits.maxTextureDimension2D, maxTextureArrayLayers: limits.maxTextureArrayLayers }, { energyCompensation: config.energyCompensation });
     const lighting = buildGpuLighting({ config: config.lighting, triangles: { records: prepared.lights, count: prepared.lightCount }, sceneCenter: prepared.sceneCenter, sceneRadius: prepared.sceneRadius });
     const plan = planBuffers({ ...estimate, materialCells: prepared.materials.byteLength / 16, lightCount: prepared.lightCount, lightHeapCells: lighting.heap.byteLength / 16, primitiveCount: prepared.primitiveCount });
     checkBufferLimits(limits, plan);

@@ -50,6 +50,15 @@ export interface WavefrontPathTracingOptions extends Omit<WavefrontSceneDescript
    * material id) and the film moments (variance) for readAov. Default false.
    */
   aovs?: boolean;
+  /**
+   * Multiple-scattering energy compensation of rough microfacet lobes (Turquin 2019 for conductors
+   * and rough transmission; Kulla and Conty 2017 albedo scaling for the diffuse lobes under the
+   * dielectric specular layer). Single-scattering microfacet models lose the energy of light that
+   * bounces more than once between microfacets (rough metals and rough glass darken); with
+   * compensation a rough white furnace stays close to 1 (never above). Default false: the glTF 2.0
+   * Appendix B model as specified.
+   */
+  energyCompensation?: boolean;
   canvas?: CanvasTarget;
   /** Share a device; otherwise one is acquired (Dawn in Node.js). */
   device?: GPUDevice;

@@ -13,7 +13,78 @@ export interface NormalizedTextureRef {
   scale: number;
 }
 
-/** A validated glTF metallic-roughness material with every default applied. */
+/** KHR_materials_specular (present when it changes the material). */
+export interface NormalizedSpecular {
+  factor: number;
+  /** Linear RGB; may exceed 1 (the product with the IOR's F0 is clamped to 1). */
+  colorFactor: [number, number, number];
+  texture?: NormalizedTextureRef;
+  colorTexture?: NormalizedTextureRef;
+}
+
+/** KHR_materials_transmission (present when transmissionFactor > 0). */
+export interface NormalizedTransmission {
+  factor: number;
+  texture?: NormalizedTextureRef;
+}
+
+/** KHR_materials_volume (present when thicknessFactor > 0 and light enters: a refractive solid). */
+export interface NormalizedVolume {
+  thicknessFactor: number;
+  thicknessTexture?: NormalizedTextureRef;
+  attenuationColor: [number, number, number];
+  /** Infinity: no absorption. */
+  attenuationDistance: number;
+}
+
+/** KHR_materials_clearcoat (present when clearcoatFactor > 0). */
+export interface NormalizedClearcoat {
+  factor: number;
+  texture?: NormalizedTextureRef;
+  roughnessFactor: number;
+  roughnessTexture?: NormalizedTextureRef;
+  normalTexture?: NormalizedTextureRef;
+}
+
+/** KHR_materials_sheen (present when sheenColorFactor is not black). */
+export interface NormalizedSheen {
+  colorFactor: [number, number, number];
+  colorTexture?: NormalizedTextureRef;
+  roughnessFactor: number;
+  roughnessTexture?: NormalizedTextureRef;
+}
+
+/** KHR_materials_iridescence (present when iridescenceFactor > 0). */
+export interface NormalizedIridescence {
+  factor: number;
+  texture?: NormalizedTextureRef;
+  ior: number;
+  thicknessMinimum: number;
+  thicknessMaximum: number;
+  thicknessTexture?: NormalizedTextureRef;
+}
+
+/** KHR_materials_anisotropy (present when anisotropyStrength > 0). */
+export interface NormalizedAnisotropy {
+  strength: number;
+  /** Radians, counter-clockwise from the tangent. */
+  rotation: number;
+  texture?: NormalizedTextureRef;
+}
+
+/** KHR_materials_diffuse_transmission (present when diffuseTransmissionFactor > 0). */
+export interface NormalizedDiffuseTransmission {
+  factor: number;
+  texture?: NormalizedTextureRef;
+  colorFactor: [number, number, number];
+  colorTexture?: NormalizedTextureRef;
+}
+
+/**
+ * A validated glTF metallic-roughness material with every default applied. A KHR extension block
+ * is present only when its factors change the material (an extension at its defaults is absent),
+ * so consumers can test presence instead of comparing defaults.
+ */
 export interface NormalizedMaterial {
   name?: string;
   baseColor: [number, number, number, number];
@@ -21,6 +92,7 @@ export interface NormalizedMaterial {
   emission: [number, number, number];
   metallic: number;
   roughness: number;
+  /** KHR_materials_ior: >= 1, or 0 for the specular-glossiness compatibility mode (Fresnel = 1). */
   ior: number;
   doubleSided: boolean;
   alphaMode: WavefrontAlphaMode;
@@ -30,6 +102,16 @@ export interface NormalizedMaterial {
   normalTexture?: NormalizedTextureRef;
   occlusionTexture?: NormalizedTextureRef;
   emissiveTexture?: NormalizedTextureRef;
+  specular?: NormalizedSpecular;
+  transmission?: NormalizedTransmission;
+  volume?: NormalizedVolume;
+  clearcoat?: NormalizedClearcoat;
+  sheen?: NormalizedSheen;
+  iridescence?: NormalizedIridescence;
+  anisotropy?: NormalizedAnisotropy;
+  diffuseTransmission?: NormalizedDiffuseTransmission;
+  /** KHR_materials_dispersion (20 / Abbe number), present when > 0 on a refractive solid. */
+  dispersion?: number;
 }
 
 export const defaultMaterial: Readonly<NormalizedMaterial> = Object.freeze<NormalizedMaterial>({
@@ -54,41 +136,63 @@ export const coreTextureSlots = {
 
 export type CoreTextureSlot = keyof typeof coreTextureSlots;
 
-/**
- * KHR material extension inputs with their defaults. The factors are part of the scene format; a
- * material that sets one to anything but its default is refused with a typed error until the BSDF
- * implements that extension, so no scene renders silently as something else.
- */
-const extensionDefaults: Readonly<Record<string, number | readonly number[] | undefined>> = {
-  specularFactor: 1,
-  specularColorFactor: [1, 1, 1],
-  transmissionFactor: 0,
-  thicknessFactor: 0,
-  attenuationColor: [1, 1, 1],
-  attenuationDistance: Infinity,
-  clearcoatFactor: 0,
-  clearcoatRoughnessFactor: 0,
-  sheenColorFactor: [0, 0, 0],
-  sheenRoughnessFactor: 0,
-  dispersion: 0,
-  iridescenceFactor: 0,
-  iridescenceIor: 1.3,
-  iridescenceThicknessMinimum: 100,
-  iridescenceThicknessMaximum: 400,
-  anisotropyStrength: 0,
-  anisotropyRotation: 0,
-  diffuseTransmissionFactor: 0,
-  diffuseTransmissionColorFactor: [1, 1, 1],
-};
-const extensionTextures = [
-  'specularTexture', 'specularColorTexture', 'transmissionTexture', 'thicknessTexture', 'clearcoatTexture', 'clearcoatRoughnessTexture',
-  'clearcoatNormalTexture', 'sheenColorTexture', 'sheenRoughnessTexture', 'iridescenceTexture', 'iridescenceThicknessTexture',
-  'anisotropyTexture', 'diffuseTransmissionTexture', 'diffuseTransmissionColorTexture',
-] as const;
+/** The KHR extension texture slots (input names) and whether their RGB is sRGB colour (each extension's specification). */
+export const extensionTextureSlots = {
+  specularTexture: { srgb: false },
+  specularColorTexture: { srgb: true },
+  transmissionTexture: { srgb: false },
+  thicknessTexture: { srgb: false },
+  clearcoatTexture: { srgb: false },
+  clearcoatRoughnessTexture: { srgb: false },
+  clearcoatNormalTexture: { srgb: false },
+  sheenColorTexture: { srgb: true },
+  sheenRoughnessTexture: { srgb: false },
+  iridescenceTexture: { srgb: false },
+  iridescenceThicknessTexture: { srgb: false },
+  anisotropyTexture: { srgb: false },
+  diffuseTransmissionTexture: { srgb: false },
+  diffuseTransmissionColorTexture: { srgb: true },
+} as const;
+
+export type ExtensionTextureSlot = keyof typeof extensionTextureSlots;
+
+const extensionFactorKeys = new Set([
+  'specularFactor', 'specularColorFactor', 'transmissionFactor', 'thicknessFactor', 'attenuationColor', 'attenuationDistance', 'clearcoatFactor',
+  'clearcoatRoughnessFactor', 'sheenColorFactor', 'sheenRoughnessFactor', 'dispersion', 'iridescenceFactor', 'iridescenceIor',
+  'iridescenceThicknessMinimum', 'iridescenceThicknessMaximum', 'anisotropyStrength', 'anisotropyRotation', 'diffuseTransmissionFactor',
+  'diffuseTransmissionColorFactor',
+]);
 const coreKeys = new Set([
   'name', 'baseColorFactor', 'baseColorTexture', 'metallicFactor', 'roughnessFactor', 'metallicRoughnessTexture', 'normalTexture',
   'occlusionTexture', 'emissiveFactor', 'emissiveTexture', 'emissiveStrength', 'ior', 'doubleSided', 'alphaMode', 'alphaCutoff',
 ]);
+
+/**
+ * Every normalized texture reference of a material (core and extension slots, occlusion included)
+ * with the colour space its slot reads it in.
+ */
+export function materialTextureRefs(m: NormalizedMaterial): { slot: string; ref: NormalizedTextureRef; srgb: boolean }[] {
+  const out: { slot: string; ref: NormalizedTextureRef; srgb: boolean }[] = [];
+  const add = (slot: string, ref: NormalizedTextureRef | undefined, srgb: boolean): void => {
+    if (ref) out.push({ slot, ref, srgb });
+  };
+  for (const slot of Object.keys(coreTextureSlots) as CoreTextureSlot[]) add(slot, m[slot], coreTextureSlots[slot].srgb);
+  add('specularTexture', m.specular?.texture, false);
+  add('specularColorTexture', m.specular?.colorTexture, true);
+  add('transmissionTexture', m.transmission?.texture, false);
+  add('thicknessTexture', m.volume?.thicknessTexture, false);
+  add('clearcoatTexture', m.clearcoat?.texture, false);
+  add('clearcoatRoughnessTexture', m.clearcoat?.roughnessTexture, false);
+  add('clearcoatNormalTexture', m.clearcoat?.normalTexture, false);
+  add('sheenColorTexture', m.sheen?.colorTexture, true);
+  add('sheenRoughnessTexture', m.sheen?.roughnessTexture, false);
+  add('iridescenceTexture', m.iridescence?.texture, false);
+  add('iridescenceThicknessTexture', m.iridescence?.thicknessTexture, false);
+  add('anisotropyTexture', m.anisotropy?.texture, false);
+  add('diffuseTransmissionTexture', m.diffuseTransmission?.texture, false);
+  add('diffuseTransmissionColorTexture', m.diffuseTransmission?.colorTexture, true);
+  return out;
+}
 
 function color(value: unknown, field: string, length: 3 | 4, fallback: readonly number[], code: GpuRendererErrorCode): number[] {
   if (value === undefined) return [...fallback];
@@ -99,13 +203,6 @@ function color(value: unknown, field: string, length: 3 | 4, fallback: readonly 
   for (let i = 0; i < value.length; i++) out.push(requireNumberInRange(value[i], `${field}[${i}]`, { min: 0 }, code));
   if (length === 4 && out.length === 3) out.push(1);
   return out;
-}
-
-function isDefault(value: unknown, fallback: number | readonly number[] | undefined): boolean {
-  if (typeof fallback === 'number') return value === fallback;
-  if (!isArrayLike(value) || fallback === undefined || value.length !== fallback.length) return false;
-  for (let i = 0; i < fallback.length; i++) if (value[i] !== fallback[i]) return false;
-  return true;
 }
 
 function vec2(value: unknown, field: string, fallback: readonly [number, number], code: GpuRendererErrorCode): [number, number] {
@@ -155,23 +252,15 @@ export function normalizeMaterial(
   const m = input ?? {};
   if (typeof m !== 'object' || m === null || Array.isArray(m)) fail(code, field, `expected a material object, got ${describe(m)}`);
   for (const key of Object.keys(m)) {
-    if (coreKeys.has(key)) continue;
-    if (key in extensionDefaults) {
-      const value = (m as Record<string, unknown>)[key];
-      if (value !== undefined && !isDefault(value, extensionDefaults[key])) {
-        fail(code, `${field}.${key}`, 'this KHR material extension is not supported by this renderer version; remove it or set its default');
-      }
-    } else if ((extensionTextures as readonly string[]).includes(key)) {
-      if ((m as Record<string, unknown>)[key] !== undefined) fail(code, `${field}.${key}`, 'this KHR material extension texture is not supported by this renderer version');
-    } else {
-      fail(code, `${field}.${key}`, 'unknown material key');
-    }
+    if (!coreKeys.has(key) && !extensionFactorKeys.has(key) && !(key in extensionTextureSlots)) fail(code, `${field}.${key}`, 'unknown material key');
   }
   const baseColor = color(m.baseColorFactor, `${field}.baseColorFactor`, 4, defaultMaterial.baseColor, code) as NormalizedMaterial['baseColor'];
   if (baseColor[3] > 1) fail(code, `${field}.baseColorFactor[3]`, `alpha must be <= 1, got ${baseColor[3]}`);
   const metallic = m.metallicFactor === undefined ? 1 : requireNumberInRange(m.metallicFactor, `${field}.metallicFactor`, { min: 0, max: 1 }, code);
   const roughness = m.roughnessFactor === undefined ? 1 : requireNumberInRange(m.roughnessFactor, `${field}.roughnessFactor`, { min: 0, max: 1 }, code);
-  const ior = m.ior === undefined ? 1.5 : requireNumberInRange(m.ior, `${field}.ior`, { min: 1, max: 10 }, code);
+  const ior = m.ior === undefined ? 1.5 : requireNumberInRange(m.ior, `${field}.ior`, { min: 0 }, code);
+  // KHR_materials_ior: ior >= 1, or exactly 0 (the specular-glossiness compatibility mode).
+  if (ior > 0 && ior < 1) fail(code, `${field}.ior`, `must be >= 1 (or 0 for the specular-glossiness mode), got ${ior}`);
   const strength = m.emissiveStrength === undefined ? 1 : requireNumberInRange(m.emissiveStrength, `${field}.emissiveStrength`, { min: 0 }, code);
   let emission = color(m.emissiveFactor, `${field}.emissiveFactor`, 3, [0, 0, 0], code).map((c) => c * strength) as NormalizedMaterial['emission'];
   let emissionFrom = `${field}.emissiveFactor`;
@@ -198,6 +287,98 @@ export function normalizeMaterial(
     const ref = m[slot];
     if (ref !== undefined) out[slot] = normalizeTextureRef(ref, `${field}.${slot}`, textureCount, code);
   }
+  Object.assign(out, normalizeExtensions(m, field, textureCount, code));
+  return out;
+}
+
+type Extensions = Pick<NormalizedMaterial, 'specular' | 'transmission' | 'volume' | 'clearcoat' | 'sheen' | 'iridescence' | 'anisotropy' | 'diffuseTransmission' | 'dispersion'>;
+
+/**
+ * The KHR material extensions' factors and textures, validated against the ranges of each
+ * extension's JSON schema; a block is kept only when it changes the material.
+ */
+function normalizeExtensions(m: WavefrontMaterialInput, field: string, textureCount: number, code: GpuRendererErrorCode): Extensions {
+  const at = (key: string): string => `${field}.${key}`;
+  const unit = (key: keyof WavefrontMaterialInput, fallback: number): number => {
+    const v = m[key];
+    return v === undefined ? fallback : requireNumberInRange(v, at(key), { min: 0, max: 1 }, code);
+  };
+  const nonNegative = (key: keyof WavefrontMaterialInput, fallback: number): number => {
+    const v = m[key];
+    return v === undefined ? fallback : requireNumberInRange(v, at(key), { min: 0 }, code);
+  };
+  const rgb = (key: keyof WavefrontMaterialInput, fallback: readonly number[], max?: number): [number, number, number] => {
+    const c = color(m[key], at(key), 3, fallback, code) as [number, number, number];
+    if (max !== undefined) c.forEach((v, i) => { if (v > max) fail(code, `${at(key)}[${i}]`, `must be <= ${max}, got ${v}`); });
+    return c;
+  };
+  const texture = (key: ExtensionTextureSlot): NormalizedTextureRef | undefined => {
+    const ref = m[key];
+    return ref === undefined ? undefined : normalizeTextureRef(ref, at(key), textureCount, code);
+  };
+  const withTextures = <T extends object>(block: T, textures: Record<string, NormalizedTextureRef | undefined>): T => {
+    for (const [k, v] of Object.entries(textures)) if (v !== undefined) (block as Record<string, unknown>)[k] = v;
+    return block;
+  };
+  const out: Extensions = {};
+
+  // KHR_materials_specular: specularFactor in [0, 1], specularColorFactor >= 0 (may exceed 1).
+  const specular = unit('specularFactor', 1);
+  const specularColor = rgb('specularColorFactor', [1, 1, 1]);
+  const specularTextures = { texture: texture('specularTexture'), colorTexture: texture('specularColorTexture') };
+  if (specular !== 1 || specularColor.some((c) => c !== 1) || specularTextures.texture || specularTextures.colorTexture) {
+    out.specular = withTextures<NormalizedSpecular>({ factor: specular, colorFactor: specularColor }, specularTextures);
+  }
+  // KHR_materials_transmission and KHR_materials_diffuse_transmission: fractions in [0, 1].
+  const transmission = unit('transmissionFactor', 0);
+  const transmissionTexture = texture('transmissionTexture');
+  if (transmission > 0) out.transmission = withTextures<NormalizedTransmission>({ factor: transmission }, { texture: transmissionTexture });
+  const diffuseTransmission = unit('diffuseTransmissionFactor', 0);
+  const diffuseTransmissionColor = rgb('diffuseTransmissionColorFactor', [1, 1, 1], 1);
+  const diffuseTextures = { texture: texture('diffuseTransmissionTexture'), colorTexture: texture('diffuseTransmissionColorTexture') };
+  if (diffuseTransmission > 0) {
+    out.diffuseTransmission = withTextures<NormalizedDiffuseTransmission>({ factor: diffuseTransmission, colorFactor: diffuseTransmissionColor }, diffuseTextures);
+  }
+  // KHR_materials_volume: thicknessFactor >= 0, attenuationDistance > 0 (Infinity: none),
+  // attenuationColor in [0, 1]. Only a solid that light can enter is a volume.
+  const thickness = nonNegative('thicknessFactor', 0);
+  const thicknessTexture = texture('thicknessTexture');
+  const attenuationColor = rgb('attenuationColor', [1, 1, 1], 1);
+  let attenuationDistance = Infinity;
+  if (m.attenuationDistance !== undefined && m.attenuationDistance !== Infinity) {
+    attenuationDistance = requireNumberInRange(m.attenuationDistance, at('attenuationDistance'), { min: 0 }, code);
+    if (attenuationDistance === 0) fail(code, at('attenuationDistance'), 'must be > 0 (Infinity: no absorption)');
+  }
+  if (thickness > 0 && (out.transmission || out.diffuseTransmission)) {
+    out.volume = withTextures<NormalizedVolume>({ thicknessFactor: thickness, attenuationColor, attenuationDistance }, { thicknessTexture });
+  }
+  // KHR_materials_dispersion: >= 0; it bends light only inside a refractive solid.
+  const dispersion = nonNegative('dispersion', 0);
+  if (dispersion > 0 && out.volume) out.dispersion = dispersion;
+  // KHR_materials_clearcoat: factor and roughness in [0, 1].
+  const clearcoat = unit('clearcoatFactor', 0);
+  const clearcoatRoughness = unit('clearcoatRoughnessFactor', 0);
+  const clearcoatTextures = { texture: texture('clearcoatTexture'), roughnessTexture: texture('clearcoatRoughnessTexture'), normalTexture: texture('clearcoatNormalTexture') };
+  if (clearcoat > 0) out.clearcoat = withTextures<NormalizedClearcoat>({ factor: clearcoat, roughnessFactor: clearcoatRoughness }, clearcoatTextures);
+  // KHR_materials_sheen: colour in [0, 1], roughness in [0, 1].
+  const sheenColor = rgb('sheenColorFactor', [0, 0, 0], 1);
+  const sheenRoughness = unit('sheenRoughnessFactor', 0);
+  const sheenTextures = { colorTexture: texture('sheenColorTexture'), roughnessTexture: texture('sheenRoughnessTexture') };
+  if (sheenColor.some((c) => c > 0)) out.sheen = withTextures<NormalizedSheen>({ colorFactor: sheenColor, roughnessFactor: sheenRoughness }, sheenTextures);
+  // KHR_materials_iridescence: factor in [0, 1], film ior >= 1, thicknesses >= 0 nm (either order).
+  const iridescence = unit('iridescenceFactor', 0);
+  const iridescenceIor = m.iridescenceIor === undefined ? 1.3 : requireNumberInRange(m.iridescenceIor, at('iridescenceIor'), { min: 1 }, code);
+  const thicknessMinimum = nonNegative('iridescenceThicknessMinimum', 100);
+  const thicknessMaximum = nonNegative('iridescenceThicknessMaximum', 400);
+  const iridescenceTextures = { texture: texture('iridescenceTexture'), thicknessTexture: texture('iridescenceThicknessTexture') };
+  if (iridescence > 0) {
+    out.iridescence = withTextures<NormalizedIridescence>({ factor: iridescence, ior: iridescenceIor, thicknessMinimum, thicknessMaximum }, iridescenceTextures);
+  }
+  // KHR_materials_anisotropy: strength in [0, 1], rotation any angle.
+  const anisotropy = unit('anisotropyStrength', 0);
+  const rotation = m.anisotropyRotation === undefined ? 0 : requireFiniteNumber(m.anisotropyRotation, at('anisotropyRotation'), code);
+  const anisotropyTexture = texture('anisotropyTexture');
+  if (anisotropy > 0) out.anisotropy = withTextures<NormalizedAnisotropy>({ strength: anisotropy, rotation }, { texture: anisotropyTexture });
   return out;
 }
 

@@ -20,6 +20,17 @@ export const shaderFeatures = {
   FEATURE_PUNCTUAL_LIGHTS: { default: true, doc: 'point, spot or directional lights are sampled by next-event estimation' },
   FEATURE_AREA_LIGHTS: { default: true, doc: 'rectangle, disk or sphere lights are sampled, hit by rays and block rays' },
   FEATURE_LIGHT_TREE: { default: true, doc: 'bounded lights are chosen by the light hierarchy instead of the power alias table' },
+  // KHR material extensions (materials subsystem): each compiles in when a material uses it.
+  FEATURE_SPECULAR: { default: true, doc: 'KHR_materials_specular: specular weight and F0 colour' },
+  FEATURE_TRANSMISSION: { default: true, doc: 'KHR_materials_transmission: thin-walled and refractive GGX transmission' },
+  FEATURE_VOLUME: { default: true, doc: 'KHR_materials_volume: refractive solids, nested media, Beer-Lambert absorption' },
+  FEATURE_CLEARCOAT: { default: true, doc: 'KHR_materials_clearcoat' },
+  FEATURE_SHEEN: { default: true, doc: 'KHR_materials_sheen (Charlie)' },
+  FEATURE_IRIDESCENCE: { default: true, doc: 'KHR_materials_iridescence (thin-film Fresnel)' },
+  FEATURE_ANISOTROPY: { default: true, doc: 'KHR_materials_anisotropy (anisotropic GGX)' },
+  FEATURE_DIFFUSE_TRANSMISSION: { default: true, doc: 'KHR_materials_diffuse_transmission' },
+  FEATURE_DISPERSION: { default: true, doc: 'KHR_materials_dispersion: paths that meet it carry one wavelength' },
+  FEATURE_ENERGY_COMPENSATION: { default: true, doc: 'multiple-scattering energy compensation of rough microfacet lobes' },
 } as const;
 
 export type ShaderFeatureName = keyof typeof shaderFeatures;

@@ -72,7 +72,8 @@ function heapLoader(heap: string, layout: StructLayout): string {
   });
   const vecCount = layout.size / 16;
   const loads = Array.from({ length: vecCount }, (_, k) => `  let v${k} = ${heap}[offset + ${k}u];`).join('\n');
-  return `// ${layout.name} from the ${heap} heap (${vecCount} vec4s at offset).\nfn load_${snake(layout.name)}(offset: u32) -> ${layout.name} {\n${loads}\n  return ${layout.name}(${args.join(', ')});\n}\n`;
+  const cells = `// Heap cells (vec4s) of one ${layout.name}, the stride of arrays of them.\nconst ${snake(layout.name).toUpperCase()}_CELLS: u32 = ${vecCount}u;\n`;
+  return `${cells}// ${layout.name} from the ${heap} heap (${vecCount} vec4s at offset).\nfn load_${snake(layout.name)}(offset: u32) -> ${layout.name} {\n${loads}\n  return ${layout.name}(${args.join(', ')});\n}\n`;
 }
 
 function heapsModule(): string {

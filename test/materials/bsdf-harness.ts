@@ -3,19 +3,35 @@ export { rng } from '../helpers/random.ts';
 // `unpack_params` / `eval_pdf` / `sample` / `flags` contract of src/materials/bsdf.wesl) on arrays
 // of inputs (real WebGPU, no mocks), plus the statistics the tests need. A new lobe gets eval/pdf,
 // sampling, chi-square, furnace and reciprocity tests by describing itself as a LobeUnderTest.
-import { readBuffer, testDevice, uploadBuffer } from '../helpers/gpu.ts';
-import { runTestProgram } from '../helpers/wgsl.ts';
+import { createShaderChecked, readBuffer, testDevice, uploadBuffer } from '../helpers/gpu.ts';
+import { Vec4Heap } from '../../src/gpu-layout/vec4-heap.ts';
+import { packMaterialTables, type MaterialPlan } from '../../src/pathtracer/scene/pack-materials.ts';
+import { linkTestProgram } from '../helpers/wgsl.ts';
 import { BufferUsage } from '../../src/gpu/webgpu-constants.ts';
 import type { GltfBsdfMaterial, Vec3 } from '../../src/materials/index.ts';
+import { packGltfBsdfParams } from '../../src/materials/gltf-bsdf-reference.ts';
 
 export const WORKGROUP = 64;
 
-/** A lobe (or composed BSDF) module and how its parameters pack into its 16-float PackedLobeParams. */
+/** A lobe (or composed BSDF) module and how its parameters pack into its 32-float PackedLobeParams. */
 export interface LobeUnderTest<P> {
   name: string;
   /** WESL module path, e.g. `package::materials::lobes::lambert`. */
   module: string;
   pack(params: P): readonly number[];
+  /** Shader feature flags the kernels compile with (the rest keep their defaults). */
+  constants?: Record<string, number>;
+}
+
+/** The KHR material extensions' shader feature flags. */
+export const materialFeatureNames = [
+  'FEATURE_SPECULAR', 'FEATURE_TRANSMISSION', 'FEATURE_VOLUME', 'FEATURE_CLEARCOAT', 'FEATURE_SHEEN', 'FEATURE_IRIDESCENCE', 'FEATURE_ANISOTROPY',
+  'FEATURE_DIFFUSE_TRANSMISSION', 'FEATURE_DISPERSION', 'FEATURE_ENERGY_COMPENSATION',
+] as const;
+
+/** Override constants with exactly the named material features on (smaller kernels compile faster). */
+export function materialFeatureConstants(on: readonly string[]): Record<string, number> {
+  return Object.fromEntries(materialFeatureNames.map((n) => [n, on.includes(n) ? 1 : 0]));
 }
 
 /** The glTF 2.0 metallic-roughness BSDF (gltf-bsdf.wesl), the composed material of the renderer. */
@@ -23,20 +39,26 @@ export const gltfLobe: LobeUnderTest<GltfBsdfMaterial> = {
   name: 'glTF metallic-roughness',
   module: 'package::materials::gltf_bsdf',
   pack: (m) => [m.baseColor[0], m.baseColor[1], m.baseColor[2], m.metallic, m.roughness, m.ior],
+  constants: materialFeatureConstants([]),
 };
+
+/** The composed glTF BSDF with KHR extensions, compiled with the features `on`. */
+export function gltfExtensionLobe(name: string, on: readonly string[]): LobeUnderTest<GltfBsdfMaterial> {
+  return { name, module: 'package::materials::gltf_bsdf', pack: packGltfBsdfParams, constants: materialFeatureConstants(on) };
+}
 
 /**
  * WESL preamble: the lobe module under the alias `lobe`, a packed test material (TestMaterial = the
- * 16 floats of PackedLobeParams), adapters `bsdf_eval` / `bsdf_pdf` / `bsdf_sample` over the lobe
+ * 32 floats of PackedLobeParams), adapters `bsdf_eval` / `bsdf_pdf` / `bsdf_sample` over the lobe
  * interface (a sample carries its path weight f |cos| / pdf and validity), and a PCG hash RNG.
  */
 export function kernelPreamble(module: string): string {
   return `import ${module} as lobe;
 import package::materials::bsdf::{PackedLobeParams, BSDF_SPECULAR};
 import package::shaders::lib::math::{PI, TWO_PI, max_component};
-struct TestMaterial { a: vec4f, b: vec4f, c: vec4f, d: vec4f }
+struct TestMaterial { a: vec4f, b: vec4f, c: vec4f, d: vec4f, e: vec4f, f: vec4f, g: vec4f, h: vec4f }
 fn t_material(t: TestMaterial) -> lobe::Params {
-  return lobe::unpack_params(PackedLobeParams(t.a, t.b, t.c, t.d));
+  return lobe::unpack_params(PackedLobeParams(t.a, t.b, t.c, t.d, t.e, t.f, t.g, t.h));
 }
 fn bsdf_eval(m: lobe::Params, wo: vec3f, wi: vec3f) -> vec3f { return lobe::eval_pdf(m, wo, wi).f; }
 fn bsdf_pdf(m: lobe::Params, wo: vec3f, wi: vec3f) -> f32 { return lobe::eval_pdf(m, wo, wi).pdf; }
@@ -57,11 +79,35 @@ fn t_unit(x: u32) -> f32 { return f32(x >> 8u) * (1.0 / 16777216.0); }
 `;
 }
 
-/** Packs parameters as TestMaterial records (16 floats each). */
+/** Floats per TestMaterial record (PackedLobeParams). */
+export const TEST_MATERIAL_FLOATS = 32;
+
+/** Packs parameters as TestMaterial records (32 floats each). */
 export function packParams<P>(lobe: LobeUnderTest<P>, params: readonly P[]): Float32Array {
-  const out = new Float32Array(params.length * 16);
-  params.forEach((p, i) => out.set(lobe.pack(p), i * 16));
+  const out = new Float32Array(params.length * TEST_MATERIAL_FLOATS);
+  params.forEach((p, i) => out.set(lobe.pack(p), i * TEST_MATERIAL_FLOATS));
   return out;
+}
+
+let tablesBuffer: GPUBuffer | undefined;
+
+/**
+ * The `materials` heap of a test kernel whose BSDF reads the albedo tables: every table at
+ * MATERIAL_TABLES_OFFSET, as a scene using every extension (and energy compensation) packs them.
+ */
+export function materialTablesBuffer(device: GPUDevice): GPUBuffer {
+  if (tablesBuffer) return tablesBuffer;
+  const heap = new Vec4Heap();
+  const plan: MaterialPlan = {
+    energyCompensation: true,
+    mediumIds: new Map(),
+    media: [],
+    tables: { ggx: true, dielectric: true, dielectricTransmission: true, clearcoat: true, sheen: true, media: false, spectral: true },
+    uses: { specular: true, transmission: true, volume: true, clearcoat: true, sheen: true, iridescence: true, anisotropy: true, diffuseTransmission: true, dispersion: true, energyCompensation: true },
+  };
+  packMaterialTables(heap, plan);
+  tablesBuffer = uploadBuffer(device, heap.finish());
+  return tablesBuffer;
 }
 
 /** Packs glTF materials as TestMaterial records. */
@@ -91,33 +137,79 @@ export interface KernelSpec {
   extra?: string;
   /** The lobe module the kernel exercises; the glTF BSDF by default. */
   module?: string;
+  /** Pipeline-overridable constants (shader feature flags); unset ones keep their defaults (on). */
+  constants?: Record<string, number>;
 }
 
-export async function runKernel(spec: KernelSpec): Promise<Float32Array> {
+const pipelines = new Map<string, Promise<{ pipeline: GPUComputePipeline; bindings: { group: number; binding: number; name: string }[] }>>();
+
+/**
+ * Links and compiles a test kernel once per source and constants (the BSDF modules are large, and
+ * lavapipe compiles them slowly), so kernels keep their per-call values in buffers: `kernel_meta[0]` is the
+ * invocation count, `kernel_meta[1]` a seed.
+ */
+function kernelPipeline(device: GPUDevice, code: string, constants: Record<string, number> | undefined) {
+  const key = `${JSON.stringify(constants ?? {})}\n${code}`;
+  let entry = pipelines.get(key);
+  if (!entry) {
+    entry = (async () => {
+      const program = await linkTestProgram(code);
+      const module = await createShaderChecked(device, program.wgsl);
+      // Only the overrides the linked kernel still declares (linking drops unused modules).
+      const declared = constants ? Object.fromEntries(Object.entries(constants).filter(([k]) => program.reflection.overrides.includes(k))) : undefined;
+      const pipeline = await device.createComputePipelineAsync({ layout: 'auto', compute: { module, entryPoint: 'main', ...(declared ? { constants: declared } : {}) } });
+      return { pipeline, bindings: program.reflection.bindings };
+    })();
+    pipelines.set(key, entry);
+  }
+  return entry;
+}
+
+export async function runKernel(spec: KernelSpec, seed = 0): Promise<Float32Array> {
   const device = await testDevice();
   const bindings = spec.inputs.map((input, k) => `@group(3) @binding(${20 + k}) var<storage, read> in${k}: array<${input.type}>;`);
   const code = `${spec.imports ?? ''}
+import package::layout::bindings::materials as t_heap;
 ${kernelPreamble(spec.module ?? gltfLobe.module)}
 ${spec.extra ?? ''}
 ${bindings.join('\n')}
 @group(3) @binding(${20 + spec.inputs.length}) var<storage, read_write> out: array<f32>;
+@group(3) @binding(${21 + spec.inputs.length}) var<storage, read> kernel_meta: array<u32>;
 @compute @workgroup_size(${WORKGROUP}) fn main(@builtin(global_invocation_id) gid: vec3u) {
   let i = gid.x;
-  if (i >= ${spec.count}u) { return; }
+  if (i >= kernel_meta[0]) { return; }
+  // Keeps the material heap in the 'auto' layout of kernels whose body never reaches it.
+  if (kernel_meta[2] == 1u) { out[0] = t_heap[0].x; }
 ${spec.body}
 }
 `;
+  // The plain glTF BSDF compiles without the extensions unless a test asks for them.
+  const constants = spec.constants ?? (spec.module === undefined ? gltfLobe.constants : undefined);
+  const { pipeline, bindings: used } = await kernelPipeline(device, code, constants);
   const buffers = spec.inputs.map((input) => uploadBuffer(device, input.data));
+  const meta = uploadBuffer(device, new Uint32Array([spec.count, seed >>> 0, 0, 0]));
   const output = device.createBuffer({ size: Math.max(16, spec.outputFloats * 4), usage: BufferUsage.STORAGE | BufferUsage.COPY_SRC });
-  const resources: Record<string, GPUBuffer> = { out: output };
+  const resources: Record<string, GPUBuffer> = { out: output, kernel_meta: meta };
   buffers.forEach((b, k) => (resources[`in${k}`] = b));
-  await runTestProgram(device, { source: code, resources, workgroups: Math.ceil(spec.count / WORKGROUP) });
+  device.pushErrorScope('validation');
+  const encoder = device.createCommandEncoder();
+  const pass = encoder.beginComputePass();
+  pass.setPipeline(pipeline);
+  for (const g of [...new Set(used.map((b) => b.group))].sort()) {
+    const entries = used.filter((b) => b.group === g).map((b) => ({ binding: b.binding, resource: { buffer: b.name === 'materials' || b.name === 't_heap' ? materialTablesBuffer(device) : resources[b.name]! } }));
+    pass.setBindGroup(g, device.createBindGroup({ layout: pipeline.getBindGroupLayout(g), entries }));
+  }
+  pass.dispatchWorkgroups(Math.ceil(spec.count / WORKGROUP));
+  pass.end();
+  device.queue.submit([encoder.finish()]);
+  const error = await device.popErrorScope();
+  if (error) throw new Error(error.message);
   const result = new Float32Array(await readBuffer(device, output, spec.outputFloats * 4));
   for (const b of buffers) b.destroy();
+  meta.destroy();
   output.destroy();
   return result;
 }
-
 
 /** Uniform direction on the upper hemisphere with z >= zMin. */
 export function randomUpperDirection(random: () => number, zMin = 0.02): Vec3 {
@@ -271,6 +363,7 @@ export function sampleAt(data: Float32Array, i: number): SampleView {
 export function sampleOnGpu<P = GltfBsdfMaterial>(m: P, wo: Vec3, n: number, seed: number, lobe: LobeUnderTest<P> = gltfLobe as unknown as LobeUnderTest<P>): Promise<Float32Array> {
   return runKernel({
     module: lobe.module,
+    ...(lobe.constants ? { constants: lobe.constants } : {}),
     inputs: [
       { data: packParams(lobe, [m]), type: 'TestMaterial' },
       { data: packDirections([wo]), type: 'vec4f' },
@@ -280,7 +373,7 @@ export function sampleOnGpu<P = GltfBsdfMaterial>(m: P, wo: Vec3, n: number, see
     body: `
   let m = t_material(in0[0]);
   let wo = in1[0].xyz;
-  let h0 = t_pcg(i ^ t_pcg(${seed >>> 0}u));
+  let h0 = t_pcg(i ^ t_pcg(kernel_meta[1]));
   let h1 = t_pcg(h0);
   let h2 = t_pcg(h1);
   let s = bsdf_sample(m, wo, t_unit(h0), vec2f(t_unit(h1), t_unit(h2)));
@@ -291,7 +384,7 @@ export function sampleOnGpu<P = GltfBsdfMaterial>(m: P, wo: Vec3, n: number, see
   let p = bsdf_pdf(m, wo, s.wi);
   let e = bsdf_eval(m, wo, s.wi);
   out[o + 12u] = p; out[o + 13u] = e.x; out[o + 14u] = e.y; out[o + 15u] = e.z;`,
-  });
+  }, seed);
 }
 
 export interface CellIntegrals {
@@ -304,8 +397,9 @@ export interface CellIntegrals {
 }
 
 /**
- * Integrates bsdf_pdf and bsdf_eval * cos over an (theta in [0, pi/2], phi in [0, 2 pi)) grid, each
- * cell by an s x s midpoint rule in (theta, phi) with the sin(theta) Jacobian.
+ * Integrates bsdf_pdf and bsdf_eval * |cos| over an (theta in [0, pi/2], phi in [0, 2 pi)) grid
+ * (theta in [0, pi] with `sphere`, for lobes that transmit), each cell by an s x s midpoint rule in
+ * (theta, phi) with the sin(theta) Jacobian.
  */
 export async function integrateCellsOnGpu<P = GltfBsdfMaterial>(
   m: P,
@@ -314,10 +408,12 @@ export async function integrateCellsOnGpu<P = GltfBsdfMaterial>(
   nPhi: number,
   s: number,
   lobe: LobeUnderTest<P> = gltfLobe as unknown as LobeUnderTest<P>,
+  sphere = false,
 ): Promise<CellIntegrals> {
   const cells = nTheta * nPhi;
   const raw = await runKernel({
     module: lobe.module,
+    ...(lobe.constants ? { constants: lobe.constants } : {}),
     inputs: [
       { data: packParams(lobe, [m]), type: 'TestMaterial' },
       { data: packDirections([wo]), type: 'vec4f' },
@@ -329,7 +425,7 @@ export async function integrateCellsOnGpu<P = GltfBsdfMaterial>(
   let wo = in1[0].xyz;
   let it = i / ${nPhi}u;
   let ip = i % ${nPhi}u;
-  let dt = (PI / 2.0) / f32(${nTheta * s});
+  let dt = (PI / ${sphere ? '1.0' : '2.0'}) / f32(${nTheta * s});
   let dp = TWO_PI / f32(${nPhi * s});
   var sum_pdf = 0.0;
   var sum_f = vec3f(0.0);
@@ -343,7 +439,7 @@ export async function integrateCellsOnGpu<P = GltfBsdfMaterial>(
       let phi = (f32(ip * ${s}u + b) + 0.5) * dp;
       let wi = vec3f(st * cos(phi), st * sin(phi), ct);
       row_pdf += bsdf_pdf(m, wo, wi);
-      row_f += bsdf_eval(m, wo, wi) * ct;
+      row_f += bsdf_eval(m, wo, wi) * abs(ct);
     }
     sum_pdf += row_pdf * st;
     sum_f += row_f * st;
@@ -361,8 +457,8 @@ export async function integrateCellsOnGpu<P = GltfBsdfMaterial>(
   return { nTheta, nPhi, pdf, fCos };
 }
 
-/** Histogram of valid, non-delta sample directions on the same (theta, phi) grid. */
-export function histogram(data: Float32Array, n: number, nTheta: number, nPhi: number): Float64Array {
+/** Histogram of valid, non-delta sample directions on the same (theta, phi) grid (over the sphere with `sphere`). */
+export function histogram(data: Float32Array, n: number, nTheta: number, nPhi: number, sphere = false): Float64Array {
   const counts = new Float64Array(nTheta * nPhi);
   for (let i = 0; i < n; i++) {
     const o = i * SAMPLE_STRIDE;
@@ -371,7 +467,7 @@ export function histogram(data: Float32Array, n: number, nTheta: number, nPhi: n
     const theta = Math.acos(z);
     let phi = Math.atan2(data[o + 1], data[o]);
     if (phi < 0) phi += 2 * Math.PI;
-    const it = Math.min(nTheta - 1, Math.floor((theta / (Math.PI / 2)) * nTheta));
+    const it = Math.min(nTheta - 1, Math.floor((theta / (sphere ? Math.PI : Math.PI / 2)) * nTheta));
     const ip = Math.min(nPhi - 1, Math.floor((phi / (2 * Math.PI)) * nPhi));
     counts[it * nPhi + ip]++;
   }

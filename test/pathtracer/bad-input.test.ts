@@ -102,8 +102,8 @@ test('instances, shared materials and textures: typed errors naming the field', 
   await expectError({ meshes: [quad], materials: [{ baseColorTexture: { index: 0 } }] }, 'INVALID_MATERIAL', 'materials[0].baseColorTexture.index');
   await expectError({ meshes: [quad], materials: [{ shininess: 3 }] }, 'INVALID_MATERIAL', 'materials[0].shininess');
   await expectError({ meshes: [{ ...quad, material: { baseColorTexture: { index: 0, texCoord: 2 } } }], textures: [{ image: { width: 1, height: 1, data: new Uint8Array(4) } }] }, 'INVALID_MESH', 'meshes[0].material.baseColorTexture.texCoord');
-  // Extension factors are part of the format, but this version refuses to render them as something else.
-  await expectError({ meshes: [quad], materials: [{ transmissionFactor: 1 }] }, 'INVALID_MATERIAL', 'materials[0].transmissionFactor');
+  // KHR extension factors are validated against their extensions' ranges.
+  await expectError({ meshes: [quad], materials: [{ transmissionFactor: 1.5 }] }, 'INVALID_MATERIAL', 'materials[0].transmissionFactor');
   const texture = (image: unknown) => ({ meshes: [{ ...quad, material: { baseColorTexture: { index: 0 } } }], textures: [{ image }] });
   await expectError(texture({ width: 2, height: 2, data: new Uint8Array(15) }), 'INVALID_TEXTURE', 'textures[0].image.data');
   await expectError(texture({ width: 0, height: 2, data: new Uint8Array(0) }), 'INVALID_TEXTURE', /textures\[0\]\.image\.width|images\[0\]\.width/);

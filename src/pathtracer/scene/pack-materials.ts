@@ -1,7 +1,46 @@
-import { INDEX_NONE, MATERIAL_ALPHA_MODE_SHIFT, MATERIAL_FLAG_DOUBLE_SIDED, ALPHA_MODE_BLEND, ALPHA_MODE_MASK, ALPHA_MODE_OPAQUE, TEXTURE_BINDING_FLAG_SRGB } from '../../gpu-layout/constants.ts';
-import { materialCoreLayout, textureBindingLayout } from '../../gpu-layout/records.ts';
+import { GpuRendererError } from '../../errors/gpu-renderer-error.ts';
+import {
+  INDEX_NONE,
+  MATERIAL_ALPHA_MODE_SHIFT,
+  MATERIAL_FLAG_ANISOTROPY,
+  MATERIAL_FLAG_CLEARCOAT,
+  MATERIAL_FLAG_DIFFUSE_TRANSMISSION,
+  MATERIAL_FLAG_DISPERSION,
+  MATERIAL_FLAG_DOUBLE_SIDED,
+  MATERIAL_FLAG_ENERGY_COMPENSATION,
+  MATERIAL_FLAG_IOR_INFINITE,
+  MATERIAL_FLAG_IRIDESCENCE,
+  MATERIAL_FLAG_SHEEN,
+  MATERIAL_FLAG_SPECULAR,
+  MATERIAL_FLAG_TRANSMISSION,
+  MATERIAL_FLAG_VOLUME,
+  MATERIAL_TABLES_OFFSET,
+  MAX_MEDIA,
+  ALPHA_MODE_BLEND,
+  ALPHA_MODE_MASK,
+  ALPHA_MODE_OPAQUE,
+  TEXTURE_BINDING_FLAG_SRGB,
+} from '../../gpu-layout/constants.ts';
+import {
+  anisotropyBlockLayout,
+  clearcoatBlockLayout,
+  diffuseTransmissionBlockLayout,
+  iridescenceBlockLayout,
+  materialCoreLayout,
+  materialTablesLayout,
+  mediumRecordLayout,
+  sheenBlockLayout,
+  specularBlockLayout,
+  textureBindingLayout,
+  transmissionBlockLayout,
+  volumeBlockLayout,
+} from '../../gpu-layout/records.ts';
+import { defineStructLayout, type StructLayout } from '../../gpu-layout/struct-layout.ts';
 import type { Vec4Heap } from '../../gpu-layout/vec4-heap.ts';
-import { coreTextureSlots, type CoreTextureSlot, type NormalizedMaterial, type NormalizedTextureRef } from '../../scene/material.ts';
+import type { AlbedoTables } from '../../materials/energy/albedo-tables.ts';
+import { packedAlbedoTable } from '../../materials/energy/table-lookup.ts';
+import { spectralResponseTable } from '../../materials/spectral/spectral-response.ts';
+import { materialTextureRefs, type NormalizedMaterial, type NormalizedTextureRef } from '../../scene/material.ts';
 
 /** Heap offset of the TextureInfo of texture `texture` decoded as sRGB or linear data. */
 export type TextureInfoOffsets = (texture: number, srgb: boolean) => number;
@@ -10,15 +49,127 @@ export type TextureInfoOffsets = (texture: number, srgb: boolean) => number;
 export function textureUsages(materials: readonly NormalizedMaterial[]): { texture: number; srgb: boolean }[] {
   const seen = new Map<string, { texture: number; srgb: boolean }>();
   for (const m of materials) {
-    for (const slot of Object.keys(coreTextureSlots) as CoreTextureSlot[]) {
-      const ref = m[slot];
-      if (ref && slot !== 'occlusionTexture') {
-        const srgb = coreTextureSlots[slot].srgb;
-        seen.set(`${ref.texture}:${srgb}`, { texture: ref.texture, srgb });
-      }
+    for (const { slot, ref, srgb } of materialTextureRefs(m)) {
+      if (slot !== 'occlusionTexture') seen.set(`${ref.texture}:${srgb}`, { texture: ref.texture, srgb });
     }
   }
   return [...seen.values()];
+}
+
+/** Which KHR material features a scene's materials use (each is a shader feature flag). */
+export interface MaterialFeatureUses {
+  specular: boolean;
+  transmission: boolean;
+  volume: boolean;
+  clearcoat: boolean;
+  sheen: boolean;
+  iridescence: boolean;
+  anisotropy: boolean;
+  diffuseTransmission: boolean;
+  dispersion: boolean;
+  energyCompensation: boolean;
+}
+
+/** Scene-wide material decisions made before packing: medium ids, tables, features. */
+export interface MaterialPlan {
+  readonly energyCompensation: boolean;
+  /** 1-based medium id of every refractive-solid material (KHR_materials_volume). */
+  readonly mediumIds: ReadonlyMap<NormalizedMaterial, number>;
+  /** The materials with a medium, in id order. */
+  readonly media: readonly NormalizedMaterial[];
+  readonly tables: Readonly<Record<keyof AlbedoTables | 'media' | 'spectral', boolean>>;
+  readonly uses: Readonly<MaterialFeatureUses>;
+}
+
+/**
+ * Plans the materials of a scene: assigns medium ids (at most MAX_MEDIA refractive-solid
+ * materials, a typed error naming the first material beyond that otherwise) and decides which
+ * tables the heap needs. `fields` names each material for errors.
+ */
+export function planMaterials(materials: readonly NormalizedMaterial[], options: { energyCompensation?: boolean; fields?: readonly string[] } = {}): MaterialPlan {
+  const energyCompensation = options.energyCompensation === true;
+  const mediumIds = new Map<NormalizedMaterial, number>();
+  const media: NormalizedMaterial[] = [];
+  const any = (p: (m: NormalizedMaterial) => boolean): boolean => materials.some(p);
+  materials.forEach((m, i) => {
+    if (!m.volume || mediumIds.has(m)) return;
+    if (media.length >= MAX_MEDIA) {
+      throw new GpuRendererError('SCENE_TOO_LARGE', `at most ${MAX_MEDIA} refractive-solid (KHR_materials_volume) materials are supported`, { field: options.fields?.[i] ?? `materials[${i}]` });
+    }
+    media.push(m);
+    mediumIds.set(m, media.length);
+  });
+  const uses: MaterialFeatureUses = {
+    specular: any((m) => m.specular !== undefined),
+    transmission: any((m) => m.transmission !== undefined),
+    volume: media.length > 0,
+    clearcoat: any((m) => m.clearcoat !== undefined),
+    sheen: any((m) => m.sheen !== undefined),
+    iridescence: any((m) => m.iridescence !== undefined),
+    anisotropy: any((m) => m.anisotropy !== undefined),
+    diffuseTransmission: any((m) => m.diffuseTransmission !== undefined),
+    dispersion: any((m) => m.dispersion !== undefined),
+    energyCompensation: energyCompensation && materials.length > 0,
+  };
+  const tables = {
+    ggx: uses.energyCompensation,
+    dielectric: uses.energyCompensation,
+    dielectricTransmission: uses.energyCompensation && uses.transmission,
+    clearcoat: uses.clearcoat,
+    sheen: uses.sheen,
+    media: uses.volume,
+    spectral: uses.dispersion,
+  };
+  return { energyCompensation, mediumIds, media, tables, uses };
+}
+
+/** One vec4 cell of a float table (four entries). */
+const tableCellLayout: StructLayout = defineStructLayout('TableCell', 1, [['v', 'vec4f']]);
+
+/** Appends a float table to the heap, four entries per vec4 (consecutive cells); returns its offset. */
+function appendFloats(heap: Vec4Heap, values: Float32Array): number {
+  const offset = heap.size;
+  for (let c = 0; c < values.length; c += 4) heap.append(tableCellLayout, { v: values.subarray(c, c + 4) });
+  return offset;
+}
+
+/** -ln(attenuationColor) / attenuationDistance per channel (KHR_materials_volume), finite. */
+export function absorptionCoefficient(volume: NonNullable<NormalizedMaterial['volume']>): [number, number, number] {
+  return volume.attenuationColor.map((c) => {
+    if (volume.attenuationDistance === Infinity || c === 1) return 0;
+    // A black channel absorbs everything at any distance; the largest f32 keeps it finite.
+    return c === 0 ? 3.4e38 : Math.min(-Math.log(c) / volume.attenuationDistance, 3.4e38);
+  }) as [number, number, number];
+}
+
+/**
+ * Writes the MaterialTables directory and the tables the plan needs at MATERIAL_TABLES_OFFSET:
+ * it must be the heap's first record (the kernels find it at that constant offset). Nothing is
+ * written when no material needs a table.
+ */
+export function packMaterialTables(heap: Vec4Heap, plan: MaterialPlan): void {
+  const t = plan.tables;
+  if (!Object.values(t).some(Boolean)) return;
+  if (heap.size !== MATERIAL_TABLES_OFFSET) throw new Error('the material tables must open the materials heap');
+  const header = heap.reserve(materialTablesLayout);
+  const table = (name: keyof AlbedoTables): number => (t[name] ? appendFloats(heap, packedAlbedoTable(name)) : INDEX_NONE);
+  const values: Record<string, number> = {
+    ggxAlbedo: table('ggx'),
+    dielectricAlbedo: table('dielectric'),
+    dielectricTransmission: table('dielectricTransmission'),
+    clearcoatAlbedo: table('clearcoat'),
+    sheenAlbedo: table('sheen'),
+    spectral: t.spectral ? appendFloats(heap, spectralResponseTable()) : INDEX_NONE,
+    media: INDEX_NONE,
+    mediumCount: plan.media.length,
+  };
+  if (t.media) {
+    values.media = heap.size;
+    for (const m of plan.media) {
+      heap.append(mediumRecordLayout, { attenuation: absorptionCoefficient(m.volume!), ior: m.ior, dispersion: m.dispersion ?? 0 });
+    }
+  }
+  heap.write(materialTablesLayout, header, values);
 }
 
 const alphaModeIds = { OPAQUE: ALPHA_MODE_OPAQUE, MASK: ALPHA_MODE_MASK, BLEND: ALPHA_MODE_BLEND } as const;
@@ -34,13 +185,73 @@ function packBinding(heap: Vec4Heap, ref: NormalizedTextureRef | undefined, srgb
   });
 }
 
+/** The MATERIAL_FLAG_* bits of a material's KHR extensions. */
+export function materialExtensionFlags(m: NormalizedMaterial, plan: MaterialPlan): number {
+  let flags = 0;
+  if (m.specular) flags |= MATERIAL_FLAG_SPECULAR;
+  if (m.transmission) flags |= MATERIAL_FLAG_TRANSMISSION;
+  if (plan.mediumIds.has(m)) flags |= MATERIAL_FLAG_VOLUME;
+  if (m.clearcoat) flags |= MATERIAL_FLAG_CLEARCOAT;
+  if (m.sheen) flags |= MATERIAL_FLAG_SHEEN;
+  if (m.iridescence) flags |= MATERIAL_FLAG_IRIDESCENCE;
+  if (m.anisotropy) flags |= MATERIAL_FLAG_ANISOTROPY;
+  if (m.diffuseTransmission) flags |= MATERIAL_FLAG_DIFFUSE_TRANSMISSION;
+  if (m.dispersion !== undefined && plan.mediumIds.has(m)) flags |= MATERIAL_FLAG_DISPERSION;
+  if (plan.energyCompensation) flags |= MATERIAL_FLAG_ENERGY_COMPENSATION;
+  if (m.ior === 0) flags |= MATERIAL_FLAG_IOR_INFINITE;
+  return flags;
+}
+
+/** Writes one extension block (reserving it first) and returns its offset, INDEX_NONE when absent. */
+function block(heap: Vec4Heap, layout: StructLayout, present: boolean, values: () => Record<string, number | ArrayLike<number>>): number {
+  if (!present) return INDEX_NONE;
+  const offset = heap.reserve(layout);
+  heap.write(layout, offset, values());
+  return offset;
+}
+
 /**
- * Appends every material to the heap: a MaterialCore plus its texture bindings (the occlusion
- * texture is not bound: the path tracer computes occlusion itself). Returns each core's offset.
+ * Appends every material to the heap: a MaterialCore, its texture bindings and its KHR extension
+ * blocks (the occlusion texture is not bound: the path tracer computes occlusion itself). Returns
+ * each core's offset.
  */
-export function packMaterials(heap: Vec4Heap, materials: readonly NormalizedMaterial[], infoOffset: TextureInfoOffsets): number[] {
+export function packMaterials(heap: Vec4Heap, materials: readonly NormalizedMaterial[], infoOffset: TextureInfoOffsets, plan: MaterialPlan = planMaterials(materials)): number[] {
+  const bind = (ref: NormalizedTextureRef | undefined, srgb: boolean): number => packBinding(heap, ref, srgb, infoOffset);
   return materials.map((m) => {
     const core = heap.reserve(materialCoreLayout);
+    const s = m.specular;
+    const specular = block(heap, specularBlockLayout, s !== undefined, () => ({
+      specularColor: s!.colorFactor, specular: s!.factor, specularTexture: bind(s!.texture, false), specularColorTexture: bind(s!.colorTexture, true),
+    }));
+    const t = m.transmission;
+    const transmission = block(heap, transmissionBlockLayout, t !== undefined, () => ({ transmission: t!.factor, transmissionTexture: bind(t!.texture, false) }));
+    const v = m.volume;
+    const medium = plan.mediumIds.get(m);
+    const volume = block(heap, volumeBlockLayout, v !== undefined && medium !== undefined, () => ({
+      attenuation: absorptionCoefficient(v!), thickness: v!.thicknessFactor, thicknessTexture: bind(v!.thicknessTexture, false), medium: medium!,
+    }));
+    const c = m.clearcoat;
+    const clearcoat = block(heap, clearcoatBlockLayout, c !== undefined, () => ({
+      clearcoat: c!.factor, roughness: c!.roughnessFactor, clearcoatTexture: bind(c!.texture, false), roughnessTexture: bind(c!.roughnessTexture, false),
+      normalTexture: bind(c!.normalTexture, false),
+    }));
+    const sh = m.sheen;
+    const sheen = block(heap, sheenBlockLayout, sh !== undefined, () => ({
+      color: sh!.colorFactor, roughness: sh!.roughnessFactor, colorTexture: bind(sh!.colorTexture, true), roughnessTexture: bind(sh!.roughnessTexture, false),
+    }));
+    const ir = m.iridescence;
+    const iridescence = block(heap, iridescenceBlockLayout, ir !== undefined, () => ({
+      iridescence: ir!.factor, ior: ir!.ior, thicknessMinimum: ir!.thicknessMinimum, thicknessMaximum: ir!.thicknessMaximum,
+      iridescenceTexture: bind(ir!.texture, false), thicknessTexture: bind(ir!.thicknessTexture, false),
+    }));
+    const an = m.anisotropy;
+    const anisotropy = block(heap, anisotropyBlockLayout, an !== undefined, () => ({
+      strength: an!.strength, rotationCos: Math.cos(an!.rotation), rotationSin: Math.sin(an!.rotation), texture: bind(an!.texture, false),
+    }));
+    const dt = m.diffuseTransmission;
+    const diffuseTransmission = block(heap, diffuseTransmissionBlockLayout, dt !== undefined, () => ({
+      color: dt!.colorFactor, diffuseTransmission: dt!.factor, texture: bind(dt!.texture, false), colorTexture: bind(dt!.colorTexture, true),
+    }));
     heap.write(materialCoreLayout, core, {
       baseColor: m.baseColor,
       emission: m.emission,
@@ -48,21 +259,37 @@ export function packMaterials(heap: Vec4Heap, materials: readonly NormalizedMate
       roughness: m.roughness,
       ior: m.ior,
       alphaCutoff: m.alphaCutoff,
-      flags: (m.doubleSided ? MATERIAL_FLAG_DOUBLE_SIDED : 0) | (alphaModeIds[m.alphaMode] << MATERIAL_ALPHA_MODE_SHIFT),
-      baseColorTexture: packBinding(heap, m.baseColorTexture, true, infoOffset),
-      metallicRoughnessTexture: packBinding(heap, m.metallicRoughnessTexture, false, infoOffset),
-      normalTexture: packBinding(heap, m.normalTexture, false, infoOffset),
-      emissiveTexture: packBinding(heap, m.emissiveTexture, true, infoOffset),
-      specular: INDEX_NONE,
-      transmission: INDEX_NONE,
-      volume: INDEX_NONE,
-      clearcoat: INDEX_NONE,
-      sheen: INDEX_NONE,
-      iridescence: INDEX_NONE,
-      anisotropy: INDEX_NONE,
-      diffuseTransmission: INDEX_NONE,
-      dispersion: 0,
+      flags: (m.doubleSided ? MATERIAL_FLAG_DOUBLE_SIDED : 0) | (alphaModeIds[m.alphaMode] << MATERIAL_ALPHA_MODE_SHIFT) | materialExtensionFlags(m, plan),
+      baseColorTexture: bind(m.baseColorTexture, true),
+      metallicRoughnessTexture: bind(m.metallicRoughnessTexture, false),
+      normalTexture: bind(m.normalTexture, false),
+      emissiveTexture: bind(m.emissiveTexture, true),
+      specular,
+      transmission,
+      volume,
+      clearcoat,
+      sheen,
+      iridescence,
+      anisotropy,
+      diffuseTransmission,
+      dispersion: m.dispersion ?? 0,
     });
     return core;
   });
+}
+
+/** Upper bound of the heap cells the materials take (cores, blocks, bindings), before tables. */
+export function materialHeapCells(materials: readonly NormalizedMaterial[]): number {
+  const binding = textureBindingLayout.size / 16;
+  let cells = 0;
+  for (const m of materials) {
+    cells += materialCoreLayout.size / 16 + materialTextureRefs(m).length * binding;
+    for (const [present, layout] of [
+      [m.specular, specularBlockLayout], [m.transmission, transmissionBlockLayout], [m.volume, volumeBlockLayout], [m.clearcoat, clearcoatBlockLayout],
+      [m.sheen, sheenBlockLayout], [m.iridescence, iridescenceBlockLayout], [m.anisotropy, anisotropyBlockLayout], [m.diffuseTransmission, diffuseTransmissionBlockLayout],
+    ] as const) {
+      if (present) cells += layout.size / 16;
+    }
+  }
+  return cells;
 }

@@ -7,7 +7,7 @@ import type { NormalizedScene } from '../../scene/normalize-scene.ts';
 import { flattenPrimitives } from './flatten-primitives.ts';
 import { buildLightTable } from './light-table.ts';
 import { packInstances } from './pack-instances.ts';
-import { packMaterials, textureUsages } from './pack-materials.ts';
+import { packMaterialTables, packMaterials, planMaterials, textureUsages, type MaterialFeatureUses } from './pack-materials.ts';
 import { packVertexStreams } from './pack-vertices.ts';
 
 /** Everything the path tracer uploads for a scene, packed on the CPU. */
@@ -30,19 +30,25 @@ export interface PreparedScene {
   sceneCenter: [number, number, number];
   sceneRadius: number;
   /** Which optional shader features the scene needs (the rest are compiled out). */
-  uses: { analyticShapes: boolean; alphaTest: boolean; textures: boolean; emissiveLights: boolean };
+  uses: { analyticShapes: boolean; alphaTest: boolean; textures: boolean; emissiveLights: boolean; materials: MaterialFeatureUses };
   warnings: string[];
 }
 
-export async function prepareScene(scene: NormalizedScene, limits: AtlasLimits, options: { signal?: AbortSignal } = {}): Promise<PreparedScene> {
+export async function prepareScene(scene: NormalizedScene, limits: AtlasLimits, options: { signal?: AbortSignal; energyCompensation?: boolean } = {}): Promise<PreparedScene> {
   const warnings: string[] = [];
   const heap = new Vec4Heap();
   const objectMaterials = scene.sceneObjects.map((o) => o.material);
+  const materialPlan = planMaterials([...scene.materials, ...objectMaterials], {
+    energyCompensation: options.energyCompensation === true,
+    fields: [...scene.materialFields, ...scene.sceneObjects.map((_, i) => `sceneObjects[${i}]`)],
+  });
+  // The material tables open the heap: the kernels find them at MATERIAL_TABLES_OFFSET.
+  packMaterialTables(heap, materialPlan);
   const usages = textureUsages([...scene.materials, ...objectMaterials]);
   const atlas = buildTextureAtlas(scene, usages, heap, limits, warnings);
   const infoOffset = (texture: number, srgb: boolean): number => atlas.infoOffset(texture, srgb);
-  const materialOffsets = packMaterials(heap, scene.materials, infoOffset);
-  const objectMaterialOffsets = packMaterials(heap, objectMaterials, infoOffset);
+  const materialOffsets = packMaterials(heap, scene.materials, infoOffset, materialPlan);
+  const objectMaterialOffsets = packMaterials(heap, objectMaterials, infoOffset, materialPlan);
   const streams = packVertexStreams(scene.meshes);
   const lights = buildLightTable(scene, infoOffset);
   const flat = flattenPrimitives(scene, infoOffset);
@@ -70,7 +76,7 @@ export async function prepareScene(scene: NormalizedScene, limits: AtlasLimits, 
     bvh: { nodeCount: bvh.nodeCount, depth: bvh.depth, sahCost: bvh.sahCost, buildTimeMs: bvh.buildTimeMs },
     sceneCenter,
     sceneRadius,
-    uses: { analyticShapes: scene.sceneObjects.length > 0, alphaTest: flat.alphaCount > 0, textures: usages.length > 0, emissiveLights: lights.count > 0 },
+    uses: { analyticShapes: scene.sceneObjects.length > 0, alphaTest: flat.alphaCount > 0, textures: usages.length > 0, emissiveLights: lights.count > 0, materials: materialPlan.uses },
     warnings,
   };
 }
