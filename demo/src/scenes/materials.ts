@@ -1,7 +1,5 @@
 // Materials the built-in scenes share. Each is a glTF metallic-roughness material as the renderer
-// takes it. `glass` is where KHR_materials_transmission goes once the path tracer renders it (it
-// refuses transmission today rather than fake it): until then it is a polished dark dielectric,
-// which shows glass's Fresnel reflections but not what lies behind it.
+// takes it, with KHR extension factors flattened under their glTF names where a material needs them.
 import type { WavefrontMaterialInput } from '@plasius/gpu-renderer';
 
 type Rgb = [number, number, number];
@@ -30,5 +28,17 @@ export const metalF0 = {
   silver: [0.972, 0.96, 0.915] as Rgb,
 };
 
-/** Clear glass: a polished dielectric today (see above); gains transmissionFactor when it lands. */
-export const glass = (tint: Rgb): WavefrontMaterialInput => dielectric(tint, 0.02, 1.5);
+/**
+ * Solid glass (KHR_materials_transmission + _volume): smooth, ior 1.5, its tint from Beer-Lambert
+ * absorption, `attenuationColor` being what is left after `attenuationDistance` (metres) inside.
+ */
+export const glass = (attenuationColor: Rgb, attenuationDistance: number): WavefrontMaterialInput => ({
+  baseColorFactor: [1, 1, 1],
+  metallicFactor: 0,
+  roughnessFactor: 0,
+  ior: 1.5,
+  transmissionFactor: 1,
+  thicknessFactor: 0.1,
+  attenuationColor,
+  attenuationDistance,
+});

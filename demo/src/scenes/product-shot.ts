@@ -40,7 +40,7 @@ export const productShot: BuiltInScene = {
     const meshes = [
       cyclorama('cyclorama', { width: 9, depth: 5, height: 4, radius: 1.4 }, diffuse([0.78, 0.78, 0.8])),
       lathe('pedestal', roundedCylinder(0.75, 0.3, 0.04), 64, dielectric([0.05, 0.05, 0.055], 0.25)),
-      lathe('bottle', bottleProfile(), 64, glass([0.03, 0.05, 0.06])),
+      lathe('bottle', bottleProfile(), 64, glass([0.72, 0.88, 0.84], 0.5)),
       lathe('cap', roundedCylinder(0.13, 0.3, 0.025), 48, metal(metalF0.gold, 0.18)),
       sphere('ball', 0.14, 48, metal(metalF0.silver, 0.04)),
       panel('key-light', [-2.2, 2.2, 2], [1.1, -0.6, -1], 1.6, 2, emitter([1, 0.97, 0.92], 9)),
