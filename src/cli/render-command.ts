@@ -67,6 +67,7 @@ export async function runRenderCommand(command: RenderCommand, io: { stderr: Pro
     exposureEv: command.exposureEv,
     aovs: command.aovs.some((a) => a !== 'sampleCount'),
     denoise: command.denoise,
+    energyCompensation: command.energyCompensation,
     ...(command.noiseThreshold !== undefined ? { adaptiveThreshold: command.noiseThreshold, minimumSamplesPerPixel } : {}),
     ...scene,
   });
