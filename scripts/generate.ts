@@ -1,13 +1,15 @@
 // `npm run generate`: links every GPU program of src/shaders/programs.ts with the WESL linker
 // (imports written in the .wesl files themselves; layout modules generated from the TypeScript
 // tables), reflects the bindings and override constants each program uses, and writes
-// src/shaders/programs.generated.ts, the only shader text the runtime reads.
+// src/shaders/programs.generated.ts, the only shader text the runtime reads (without comments:
+// shader-build/compact-wgsl.ts).
 import { existsSync, readFileSync, writeFileSync } from 'node:fs';
 import { fileURLToPath } from 'node:url';
 import { pathTracerBindings, type BindingSpec } from '../src/gpu-layout/bindings.ts';
 import { displayBindings } from '../src/shaders/display-bindings.ts';
 import { programSpecs } from '../src/shaders/programs.ts';
 import { reflectProgram } from './shader-build/reflect.ts';
+import { compactWgsl } from './shader-build/compact-wgsl.ts';
 import { linkProgram, weslProjectSources } from './shader-build/wesl-project.ts';
 import { generateRasterPrograms } from './shader-build/raster-programs.ts';
 
@@ -19,7 +21,7 @@ const entries: string[] = [];
 for (const [name, spec] of Object.entries(programSpecs)) {
   let wgsl: string;
   try {
-    wgsl = (await linkProgram(spec.module, {}, sources)).dest.trim();
+    wgsl = compactWgsl((await linkProgram(spec.module, {}, sources)).dest);
   } catch (error) {
     console.error(`generate: linking program ${name} (${spec.module}) failed:\n${(error as Error).message}`);
     process.exit(1);

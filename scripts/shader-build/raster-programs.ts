@@ -11,6 +11,7 @@ import { rasterLayoutModule, rasterLayoutModuleKey } from '../../src/raster/gpu/
 import { rasterProgramSpecs } from '../../src/raster/shaders/raster-programs.ts';
 import type { WeslSources } from '../../src/shaders/layout-modules.ts';
 import { reflectProgram } from './reflect.ts';
+import { compactWgsl } from './compact-wgsl.ts';
 import { linkProgram } from './wesl-project.ts';
 
 const out = fileURLToPath(new URL('../../src/raster/shaders/raster-programs.generated.ts', import.meta.url));
@@ -21,7 +22,7 @@ export async function generateRasterPrograms(sources: WeslSources): Promise<numb
   for (const [name, spec] of Object.entries(rasterProgramSpecs)) {
     let wgsl: string;
     try {
-      wgsl = (await linkProgram(spec.module, extra, sources)).dest.trim();
+      wgsl = compactWgsl((await linkProgram(spec.module, extra, sources)).dest);
     } catch (error) {
       throw new Error(`linking raster program ${name} (${spec.module}) failed:\n${(error as Error).message}`, { cause: error });
     }
