@@ -54,6 +54,17 @@ export function normalizeRasterMaterial(input: WavefrontMaterialInput | undefine
     if (!drawnFactors.has(key) && !drawnTextures.has(key) && !ignoredTextures.has(key)) coreInput[key] = value;
   }
   const core = normalizeMaterial(coreInput as WavefrontMaterialInput, field, { textureCount });
+  // Extensions the path tracer renders but this renderer does not draw: refused, never approximated
+  // by something else (the factor that turns each on is named).
+  const undrawn: [unknown, string][] = [
+    [core.iridescence, 'iridescenceFactor'],
+    [core.anisotropy, 'anisotropyStrength'],
+    [core.diffuseTransmission, 'diffuseTransmissionFactor'],
+    [core.dispersion, 'dispersion'],
+  ];
+  for (const [present, key] of undrawn) {
+    if (present !== undefined) fail('INVALID_MATERIAL', `${field}.${key}`, 'the raster renderer does not draw this extension (the path tracer renders it); remove it for the raster view');
+  }
   const textures: RasterMaterial['textures'] = {};
   for (const slot of rasterTextureSlots) {
     const ref = slot.name in core ? (core as unknown as Record<string, NormalizedTextureRef | undefined>)[slot.name] : undefined;
