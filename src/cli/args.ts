@@ -40,7 +40,7 @@ export interface RenderCommand {
   denoise: boolean;
   /** OpenEXR pixel type (--half: half floats, else float). */
   half: boolean;
-  /** Multiple-scattering energy compensation on rough microfacets (--energy-compensation). */
+  /** Multiple-scattering energy compensation on rough microfacets (off with --no-energy-compensation). */
   energyCompensation: boolean;
   /** Environment map file (.hdr or .exr) lighting the scene (`--env`). */
   env?: string;
@@ -71,7 +71,7 @@ export const renderDefaults = {
   format: 'png',
   denoise: false,
   half: false,
-  energyCompensation: false,
+  energyCompensation: true,
 } as const satisfies Omit<RenderCommand, 'kind' | 'scenePath' | 'aovs'>;
 
 export const usage = `Usage: gpu-renderer render [scene.json | model.glb | model.gltf] [options]
@@ -102,8 +102,8 @@ Options:
   --denoise                denoise (edge-avoiding a-trous on the GPU); an .exr keeps the raw
                            beauty as layer raw.R/G/B
   --half                   .exr only: half-float channels (ids and counts stay float)
-  --energy-compensation    add back the energy rough microfacets lose to multiple scattering
-                           (Kulla-Conty / Turquin; off by default, as in pbrt and Mitsuba)
+  --no-energy-compensation render rough microfacets single-scattering only (the glTF Appendix B
+                           model as specified), without the multiple-scattering energy compensation
   --env <file>             environment map lighting the scene: Radiance .hdr or OpenEXR,
                            equirectangular, top row = +Y (replaces the scene's environment)
   --env-intensity <x>      multiplies the environment map's radiance (default 1)
@@ -224,9 +224,12 @@ export function parseRenderArgs(argv: readonly string[]): RenderCommand | HelpCo
         break;
       case '--denoise':
       case '--half':
-      case '--energy-compensation':
         if (value !== undefined) invalid(flag, 'takes no value');
-        command[flag === '--denoise' ? 'denoise' : flag === '--half' ? 'half' : 'energyCompensation'] = true;
+        command[flag === '--denoise' ? 'denoise' : 'half'] = true;
+        break;
+      case '--no-energy-compensation':
+        if (value !== undefined) invalid(flag, 'takes no value');
+        command.energyCompensation = false;
         break;
       case '--camera':
       case '--variant': {

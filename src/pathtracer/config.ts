@@ -74,6 +74,6 @@ export function createWavefrontPathTracingComputeConfig(options: Partial<Wavefro
   const output = parseOutputOptions(options);
   return {
     width, height, maxDepth, samplesPerPixel, tileSize, seed, camera, environment, toneMapping, exposure, aovs: options.aovs ?? false, output, lighting,
-    energyCompensation: options.energyCompensation ?? false,
+    energyCompensation: options.energyCompensation ?? true,
   };
 }

@@ -55,8 +55,9 @@ export interface WavefrontPathTracingOptions extends Omit<WavefrontSceneDescript
    * and rough transmission; Kulla and Conty 2017 albedo scaling for the diffuse lobes under the
    * dielectric specular layer). Single-scattering microfacet models lose the energy of light that
    * bounces more than once between microfacets (rough metals and rough glass darken); with
-   * compensation a rough white furnace stays close to 1 (never above). Default false: the glTF 2.0
-   * Appendix B model as specified.
+   * compensation a rough white furnace stays close to 1 (never above). Default true; false gives
+   * the glTF 2.0 Appendix B model as specified, whose 1 - F(wo.h) layering also gains up to about 3%
+   * at grazing angles on rough dielectrics.
    */
   energyCompensation?: boolean;
   canvas?: CanvasTarget;

@@ -28,10 +28,10 @@ test('defaults render the built-in scene', () => {
 
 test('every flag, in both --flag value and --flag=value forms', () => {
   const argv = ['scene.json', '--width', '32', '--height=24', '--spp', '16', '--spp-per-frame=2', '--max-depth', '5', '--seed', '4294967295',
-    '--tone-mapping', 'aces', '--exposure=0.5', '--out', 'out/x.png', '--energy-compensation'];
+    '--tone-mapping', 'aces', '--exposure=0.5', '--out', 'out/x.png', '--no-energy-compensation'];
   assert.deepEqual(parseRenderArgs(argv), {
     kind: 'render', scenePath: 'scene.json', width: 32, height: 24, spp: 16, sppPerFrame: 2, maxDepth: 5, seed: 4294967295,
-    toneMapping: 'aces', exposure: 0.5, exposureEv: 0, out: 'out/x.png', format: 'png', denoise: false, half: false, energyCompensation: true, aovs: [],
+    toneMapping: 'aces', exposure: 0.5, exposureEv: 0, out: 'out/x.png', format: 'png', denoise: false, half: false, energyCompensation: false, aovs: [],
   });
   // The scene may come after the flags, or after `--` (a name starting with a dash).
   assert.equal(render(['--spp', '1', 'a.json']).scenePath, 'a.json');

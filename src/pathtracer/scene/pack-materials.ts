@@ -109,7 +109,7 @@ export function planMaterials(materials: readonly NormalizedMaterial[], options:
     anisotropy: any((m) => m.anisotropy !== undefined),
     diffuseTransmission: any((m) => m.diffuseTransmission !== undefined),
     dispersion: any((m) => m.dispersion !== undefined),
-    energyCompensation: energyCompensation && materials.length > 0,
+    energyCompensation: energyCompensation && any(hasCompensableLobe),
   };
   const tables = {
     ggx: uses.energyCompensation,
@@ -185,6 +185,16 @@ function packBinding(heap: Vec4Heap, ref: NormalizedTextureRef | undefined, srgb
   });
 }
 
+/**
+ * Whether multiple-scattering compensation changes a material: it has a rough microfacet lobe (a
+ * conductor, a Fresnel layer of ior other than 1, or an extension's lobe). Lambertian materials
+ * (metallic 0, ior 1, no extension) and smooth ones have none, so they skip the table lookups.
+ */
+export function hasCompensableLobe(m: NormalizedMaterial): boolean {
+  if (m.specular || m.transmission || m.clearcoat || m.sheen || m.iridescence || m.anisotropy || m.diffuseTransmission) return true;
+  return m.roughness > 0 && (m.metallic > 0 || m.ior !== 1);
+}
+
 /** The MATERIAL_FLAG_* bits of a material's KHR extensions. */
 export function materialExtensionFlags(m: NormalizedMaterial, plan: MaterialPlan): number {
   let flags = 0;
@@ -197,7 +207,7 @@ export function materialExtensionFlags(m: NormalizedMaterial, plan: MaterialPlan
   if (m.anisotropy) flags |= MATERIAL_FLAG_ANISOTROPY;
   if (m.diffuseTransmission) flags |= MATERIAL_FLAG_DIFFUSE_TRANSMISSION;
   if (m.dispersion !== undefined && plan.mediumIds.has(m)) flags |= MATERIAL_FLAG_DISPERSION;
-  if (plan.energyCompensation) flags |= MATERIAL_FLAG_ENERGY_COMPENSATION;
+  if (plan.energyCompensation && hasCompensableLobe(m)) flags |= MATERIAL_FLAG_ENERGY_COMPENSATION;
   if (m.ior === 0) flags |= MATERIAL_FLAG_IOR_INFINITE;
   return flags;
 }
