@@ -9,7 +9,7 @@ import assert from 'node:assert/strict';
 import { createWavefrontPathTracingComputeRenderer } from '../../src/pathtracer/index.ts';
 import { validateAreaLight } from '../../src/lighting/area-lights.ts';
 import type { WavefrontSceneLightInput } from '../../src/lighting/lighting-options.ts';
-import type { WavefrontMeshInput } from '../../src/scene/types.ts';
+import type { WavefrontCameraInput, WavefrontMeshInput } from '../../src/scene/types.ts';
 import { testDevice } from '../helpers/gpu.ts';
 import { box } from './slab-scene.ts';
 
@@ -20,7 +20,7 @@ const medium = { baseColorFactor: [1, 1, 1], metallicFactor: 0, roughnessFactor:
 /** The medium's front face: z = 1 (the camera looks down -z from z = 4). */
 const FRONT = 1;
 
-async function renderMean(meshes: WavefrontMeshInput[], lights: WavefrontSceneLightInput[], camera: Record<string, unknown>, spp: number): Promise<number[]> {
+async function renderMean(meshes: WavefrontMeshInput[], lights: WavefrontSceneLightInput[], camera: WavefrontCameraInput, spp: number): Promise<number[]> {
   const device = await testDevice();
   const renderer = await createWavefrontPathTracingComputeRenderer({ device, width: SIZE, height: SIZE, maxDepth: 6, samplesPerPixel: spp, seed: 3, camera, meshes, lights });
   try {
@@ -37,7 +37,7 @@ async function renderMean(meshes: WavefrontMeshInput[], lights: WavefrontSceneLi
   }
 }
 
-const frontCamera = { type: 'orthographic', position: [0, 0, 4], target: [0, 0, 0], up: [0, 1, 0], orthographicHeight: 1 };
+const frontCamera: WavefrontCameraInput = { type: 'orthographic', position: [0, 0, 4], target: [0, 0, 0], up: [0, 1, 0], orthographicHeight: 1 };
 /** A rectangle light filling the view at z = lightZ, facing the camera. */
 const rectangle = (z: number) => ({ type: 'rectangle' as const, center: [0, 0, z], edgeU: [3, 0, 0], edgeV: [0, 3, 0], emission: [1, 1, 1], intensity: 2 });
 
@@ -83,7 +83,7 @@ test('next-event and BSDF-sampled light inside the medium: a floor lit by a sphe
     material: { baseColorFactor: [albedo, albedo, albedo], metallicFactor: 0, roughnessFactor: 1, ior: 1 },
   };
   // The view (x in [-0.4, 0], y in [-0.2, 0.2]) sees the floor, not the light.
-  const camera = { type: 'orthographic', position: [-0.2, 0, 4], target: [-0.2, 0, 0], up: [0, 1, 0], orthographicHeight: 0.4 };
+  const camera: WavefrontCameraInput = { type: 'orthographic', position: [-0.2, 0, 4], target: [-0.2, 0, 0], up: [0, 1, 0], orthographicHeight: 0.4 };
   const image = await renderMean([{ ...box(-2, FRONT), material: medium }, floor], [light], camera, 256);
   // Reference: quadrature over the cone (uniform in cos alpha and phi) at 4 x 4 points per pixel.
   const reference = [0, 0, 0];
