@@ -22,6 +22,8 @@ import { cpuMark, isCpuAdapter, workerCpuSeconds } from './cpu-clock.ts';
 import { createWavefrontPathTracingComputeRenderer } from '../src/pathtracer/index.ts';
 import type { WavefrontPathTracingOptions } from '../src/pathtracer/types.ts';
 import type { WavefrontMaterialInput, WavefrontMeshInput } from '../src/scene/types.ts';
+import { rng } from '../test/helpers/random.ts';
+import { windowPortal, windowRoomMesh } from '../test/helpers/window-room.ts';
 
 export interface LightingMeasurement {
   scene: string;
@@ -59,17 +61,6 @@ export interface LightingBenchmark {
 const SIZE = Number(process.env.BENCH_LIGHTING_SIZE ?? 48);
 const SPP = Number(process.env.BENCH_LIGHTING_SPP ?? 32);
 
-function rng(seed: number): () => number {
-  let a = seed >>> 0;
-  return () => {
-    a = (a + 0x6d2b79f5) >>> 0;
-    let t = a;
-    t = Math.imul(t ^ (t >>> 15), t | 1);
-    t ^= t + Math.imul(t ^ (t >>> 7), t | 61);
-    return ((t ^ (t >>> 14)) >>> 0) / 4294967296;
-  };
-}
-
 const lambert = (c: number): WavefrontMaterialInput => ({ baseColorFactor: [c, c, c, 1], metallicFactor: 0, roughnessFactor: 1, ior: 1 });
 const floor = (half: number): WavefrontMeshInput => ({ positions: [-half, 0, -half, half, 0, -half, half, 0, half, -half, 0, half], indices: [0, 2, 1, 0, 3, 2], material: lambert(0.6) });
 
@@ -101,29 +92,6 @@ function emitters(count: number, seed: number, totalRadianceArea: number): Wavef
     positions.push(c[0]!, c[1]!, c[2]!, c[0]! + edge, c[1]!, c[2]!, c[0]!, c[1]! + tilt * edge, c[2]! + edge);
   }
   return { positions, material: { baseColorFactor: [0, 0, 0, 1], emissiveFactor: [1, 0.9, 0.75], emissiveStrength: 20, doubleSided: false } };
-}
-
-function room(): WavefrontMeshInput {
-  type Quad = number[][];
-  const quads: Quad[] = [
-    [[-2, 0, -2], [2, 0, -2], [2, 0, 2], [-2, 0, 2]],
-    [[-2, 2.4, -2], [-2, 2.4, 2], [2, 2.4, 2], [2, 2.4, -2]],
-    [[-2, 0, -2], [-2, 0, 2], [-2, 2.4, 2], [-2, 2.4, -2]],
-    [[-2, 0, -2], [-2, 2.4, -2], [2, 2.4, -2], [2, 0, -2]],
-    [[-2, 0, 2], [2, 0, 2], [2, 2.4, 2], [-2, 2.4, 2]],
-    [[2, 0, -2], [2, 0.8, -2], [2, 0.8, 2], [2, 0, 2]],
-    [[2, 1.8, -2], [2, 2.4, -2], [2, 2.4, 2], [2, 1.8, 2]],
-    [[2, 0.8, -2], [2, 1.8, -2], [2, 1.8, -0.7], [2, 0.8, -0.7]],
-    [[2, 0.8, 0.7], [2, 1.8, 0.7], [2, 1.8, 2], [2, 0.8, 2]],
-  ];
-  const positions: number[] = [];
-  const indices: number[] = [];
-  for (const q of quads) {
-    const base = positions.length / 3;
-    for (const v of q) positions.push(...v);
-    indices.push(base, base + 1, base + 2, base, base + 2, base + 3);
-  }
-  return { positions, indices, material: { ...lambert(0.7), doubleSided: true } };
 }
 
 async function measure(device: GPUDevice, scene: string, method: string, options: Partial<WavefrontPathTracingOptions>): Promise<LightingMeasurement> {
@@ -196,11 +164,11 @@ export async function runLightingBenchmark(): Promise<LightingBenchmark> {
 
     const roomScene: Partial<WavefrontPathTracingOptions> = {
       camera: { position: [-1.8, 1.6, 1.7], target: [0.5, 0.5, -0.5], fovYDegrees: 70 },
-      meshes: [room()],
+      meshes: [windowRoomMesh()],
       environmentMap: sunnyMap(200),
     };
     rows.push(await measure(device, 'room through a window', 'no portal', roomScene));
-    rows.push(await measure(device, 'room through a window', 'portal (guide)', { ...roomScene, environmentPortals: [{ center: [2, 1.3, 0], edgeU: [0, 1, 0], edgeV: [0, 0, 1.4] }] }));
+    rows.push(await measure(device, 'room through a window', 'portal (guide)', { ...roomScene, environmentPortals: [windowPortal] }));
   } finally {
     if (acquired.ownsDevice) device.destroy();
   }

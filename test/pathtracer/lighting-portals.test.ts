@@ -5,7 +5,6 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { createWavefrontPathTracingComputeRenderer } from '../../src/pathtracer/index.ts';
-import type { WavefrontMeshInput } from '../../src/scene/types.ts';
 import type { WavefrontPathTracingOptions } from '../../src/pathtracer/types.ts';
 import { readBuffer, testDevice } from '../helpers/gpu.ts';
 import { runTestProgram } from '../helpers/wgsl.ts';
@@ -13,35 +12,7 @@ import { BufferUsage } from '../../src/gpu/webgpu-constants.ts';
 import { buildPortalEnvironmentSampler, portalDirectionToUv, portalEnvironmentPdf, portalWindow, validateEnvironmentPortals, type EnvironmentPortalMode } from '../../src/lighting/portals.ts';
 import { chiSquareTest } from '../lighting/helpers.ts';
 import { lightingFor, lightingResources, mapOption, testHdri } from '../lighting/gpu-fixtures.ts';
-
-type Quad = [number[], number[], number[], number[]];
-
-/** A closed 4 x 2.4 x 4 room with a window in its +x wall (y in [0.8, 1.8], z in [-0.7, 0.7]). */
-function roomWithWindow(): WavefrontMeshInput[] {
-  const quads: Quad[] = [
-    [[-2, 0, -2], [2, 0, -2], [2, 0, 2], [-2, 0, 2]], // floor
-    [[-2, 2.4, -2], [-2, 2.4, 2], [2, 2.4, 2], [2, 2.4, -2]], // ceiling
-    [[-2, 0, -2], [-2, 0, 2], [-2, 2.4, 2], [-2, 2.4, -2]], // -x wall
-    [[-2, 0, -2], [-2, 2.4, -2], [2, 2.4, -2], [2, 0, -2]], // -z wall
-    [[-2, 0, 2], [2, 0, 2], [2, 2.4, 2], [-2, 2.4, 2]], // +z wall
-    // +x wall around the window
-    [[2, 0, -2], [2, 0.8, -2], [2, 0.8, 2], [2, 0, 2]],
-    [[2, 1.8, -2], [2, 2.4, -2], [2, 2.4, 2], [2, 1.8, 2]],
-    [[2, 0.8, -2], [2, 1.8, -2], [2, 1.8, -0.7], [2, 0.8, -0.7]],
-    [[2, 0.8, 0.7], [2, 1.8, 0.7], [2, 1.8, 2], [2, 0.8, 2]],
-  ];
-  const positions: number[] = [];
-  const indices: number[] = [];
-  for (const q of quads) {
-    const base = positions.length / 3;
-    for (const v of q) positions.push(...v);
-    indices.push(base, base + 1, base + 2, base, base + 2, base + 3);
-  }
-  return [{ positions, indices, material: { baseColorFactor: [0.7, 0.7, 0.7, 1], metallicFactor: 0, roughnessFactor: 1, ior: 1, doubleSided: true } }];
-}
-
-/** The window as a portal: cross(edgeU, edgeV) = +x points out of the room. */
-const windowPortal = { center: [2, 1.3, 0], edgeU: [0, 1, 0], edgeV: [0, 0, 1.4] };
+import { windowPortal, windowRoomMesh } from '../helpers/window-room.ts';
 
 const portalKernel = (p: readonly number[]): string => `
 import package::lighting::portals::{sample_portal_environment, portal_environment_pdf};
@@ -123,7 +94,7 @@ const camera = { position: [-1.8, 1.6, 1.7], target: [0.5, 0.5, -0.5], up: [0, 1
 async function renderRoom(options: Partial<WavefrontPathTracingOptions>, seed: number, spp: number): Promise<Float32Array> {
   const device = await testDevice();
   const renderer = await createWavefrontPathTracingComputeRenderer({
-    device, width: size, height: size, samplesPerPixel: spp, seed, maxDepth: 4, camera, meshes: roomWithWindow(), environmentMap: mapOption(testHdri(64, 32, 50)), ...options,
+    device, width: size, height: size, samplesPerPixel: spp, seed, maxDepth: 4, camera, meshes: [windowRoomMesh()], environmentMap: mapOption(testHdri(64, 32, 50)), ...options,
   });
   try {
     const stats = await renderer.renderFrame();
