@@ -95,19 +95,15 @@ export async function loadEnvironmentMap(source: EnvironmentMapSource, options: 
   if (!(typeof source === 'string' || source instanceof URL || source instanceof ArrayBuffer || source instanceof Uint8Array)) {
     throw new GpuRendererError('INVALID_ENVIRONMENT', 'expected a path, a URL, an ArrayBuffer or a Uint8Array', { field });
   }
+  const policy = options.negativeTexels ?? 'error';
+  if (policy !== 'error' && policy !== 'zero') throw new GpuRendererError('INVALID_OPTION', `expected 'error' or 'zero', got ${String(policy)}`, { field: 'negativeTexels' });
   const bytes = await readSource(source, field);
   let image;
   if (isRadianceHdr(bytes)) image = decodeRadianceHdr(bytes, field);
   else if (isOpenExr(bytes)) image = await decodeOpenExr(bytes, field, options.EXRLoader);
   else throw new GpuRendererError('INVALID_ENVIRONMENT', 'not a Radiance .hdr ("#?" header) or OpenEXR file', { field });
-  const policy = options.negativeTexels ?? 'error';
-  if (policy !== 'error' && policy !== 'zero') throw new GpuRendererError('INVALID_OPTION', `expected 'error' or 'zero', got ${String(policy)}`, { field: 'negativeTexels' });
-  if (policy === 'zero') {
-    const data = Float32Array.from(image.data);
-    const report = zeroNegativeChannels(data);
-    image = { ...image, data };
-    options.onNegativeTexels?.(report);
-  }
+  // The decoded texels are this call's own: zeroed in place (validation copies them anyway).
+  if (policy === 'zero') options.onNegativeTexels?.(zeroNegativeChannels(image.data));
   return validateEnvironmentMap(
     { width: image.width, height: image.height, data: image.data, intensity: options.intensity, rotationRadians: options.rotationRadians },
     field,
