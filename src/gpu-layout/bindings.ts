@@ -43,16 +43,10 @@ export const pathTracerBindings = {
   lighting: { group: G.frame, binding: 2, kind: 'uniform', type: 'LightingUniforms', doc: 'where the lights heap keeps each kind of emitter, the sun, selection probabilities' },
   environmentTexture: { group: G.frame, binding: 3, kind: 'texture', type: 'texture_2d<f32>', sampleType: 'unfilterable-float', viewDimension: '2d', doc: 'environment map radiance (rgba32float, equirectangular, row 0 = +Y)' },
   // Group 3: transport state, per dispatch.
-  paths: { group: G.transport, binding: 0, kind: 'storage', access: 'read_write', type: 'array<PathState>', doc: 'state of every path of the wave' },
-  rays: { group: G.transport, binding: 1, kind: 'storage', access: 'read_write', type: 'array<RayWorkItem>', doc: 'two ray queues (ping-pong halves)' },
-  shadingQueue: { group: G.transport, binding: 2, kind: 'storage', access: 'read_write', type: 'array<ShadingWorkItem>', doc: 'hits from the front, escaped rays from the back' },
-  surfaces: { group: G.transport, binding: 3, kind: 'storage', access: 'read_write', type: 'array<SurfaceRecord>', doc: 'evaluated materials, one per hit' },
-  shadowRays: { group: G.transport, binding: 4, kind: 'storage', access: 'read_write', type: 'array<ShadowRay>', doc: 'next-event estimation queries' },
-  counters: { group: G.transport, binding: 5, kind: 'storage', access: 'read_write', type: 'array<atomic<u32>, QUEUE_COUNTER_COUNT>', doc: 'queue lengths and statistics' },
-  samples: { group: G.transport, binding: 6, kind: 'storage', access: 'read_write', type: 'array<SampleRecord>', doc: 'radiance and AOVs of every path sample' },
+  paths: { group: G.transport, binding: 0, kind: 'storage', access: 'read_write', type: 'array<PathRecord>', doc: 'every path of the wave: state, next ray and its hit, pending shadow ray, sample' },
+  queues: { group: G.transport, binding: 1, kind: 'storage', access: 'read_write', type: 'array<atomic<u32>>', doc: 'statistics, per-bounce queue lengths, then the ray and shadow queues (path slots)' },
   film: { group: G.transport, binding: 7, kind: 'storage', access: 'read_write', type: 'array<vec4f>', doc: 'full-frame accumulation: radiance sum, sample count' },
   filmAovs: { group: G.transport, binding: 11, kind: 'storage', access: 'read_write', type: 'array<vec4f>', doc: 'AOV sums per pixel: (albedo, depth), (normal, hits), (emission, squared luminance of the radiance without it)' },
-  dispatchArgs: { group: G.transport, binding: 8, kind: 'storage', access: 'read_write', type: 'array<u32>', doc: 'indirect dispatch arguments written from queue lengths' },
   wave: { group: G.transport, binding: 9, kind: 'uniform', dynamic: true, type: 'WaveUniforms', doc: 'per-wave constants' },
   bounce: { group: G.transport, binding: 10, kind: 'uniform', dynamic: true, type: 'BounceUniforms', doc: 'per-bounce constants' },
   // Output (issue 9): film moments and ids, adaptive sampling, denoising. Minimal 16-byte buffers

@@ -6,50 +6,62 @@
 import { mediumStackLimit } from '../transport/medium-stack.ts';
 import { fraunhoferLinesNm } from '../transport/spectral-samples.ts';
 
-/** Slots of the u32 counter buffer (atomics in WGSL): queue lengths first, then statistics. */
+/**
+ * Statistics words at the head of the `queues` buffer (atomics in WGSL), read back per frame.
+ * The luminance tallies are 64-bit fixed point (lo word, then hi word; LUMINANCE_FRACTION_BITS
+ * fractional bits), summed per workgroup.
+ */
 export const queueCounterSlots = {
-  rayCount0: 0,
-  rayCount1: 1,
-  hitCount: 2,
-  missCount: 3,
-  shadowCount: 4,
-  cameraRays: 5,
-  extensionRays: 6,
-  shadowRays: 7,
-  escapedPaths: 8,
-  russianRouletteTerminations: 9,
-  maxDepthTerminations: 10,
-  invalidSamples: 11,
-  emitterHits: 12,
-  absorbedPaths: 13,
-  invalidBsdfSamples: 14,
-  traversalFallbacks: 15,
-  // Output diagnostics (issue 9): per-sample counts and terminal luminance as 64-bit fixed point
-  // (lo word, then hi word; LUMINANCE_FRACTION_BITS fractional bits), summed per workgroup.
-  invalidPathSamples: 16,
-  invalidThroughputTerminations: 17,
-  clampEquivalentSamples: 18,
-  totalLuminanceLo: 19,
-  totalLuminanceHi: 20,
-  emitterLuminanceLo: 21,
-  emitterLuminanceHi: 22,
-  environmentLuminanceLo: 23,
-  environmentLuminanceHi: 24,
+  cameraRays: 0,
+  extensionRays: 1,
+  shadowRays: 2,
+  escapedPaths: 3,
+  russianRouletteTerminations: 4,
+  maxDepthTerminations: 5,
+  invalidSamples: 6,
+  emitterHits: 7,
+  absorbedPaths: 8,
+  invalidBsdfSamples: 9,
+  traversalFallbacks: 10,
+  invalidPathSamples: 11,
+  invalidThroughputTerminations: 12,
+  clampEquivalentSamples: 13,
+  totalLuminanceLo: 14,
+  totalLuminanceHi: 15,
+  emitterLuminanceLo: 16,
+  emitterLuminanceHi: 17,
+  environmentLuminanceLo: 18,
+  environmentLuminanceHi: 19,
 } as const;
 
 export type QueueCounterName = keyof typeof queueCounterSlots;
 
+/** Statistics words (the block read back per frame). */
 export const queueCounterCount = 32;
 
-/** Bytes of one statistics record (the counter buffer) read back per frame. */
+/** Bytes of one statistics record (the counter block) read back per frame. */
 export const rendererWavefrontComputeStatsStride = queueCounterCount * 4;
 
-/** Offsets (in u32) of the indirect dispatch argument triples in the dispatchArgs buffer. */
-export const dispatchArgSlots = {
-  /** Sized by the bounce's input ray queue; every stage of the bounce uses it. */
-  intersect: 0,
+/**
+ * The rest of the `queues` buffer: after the statistics, two length words per bounce (rays to
+ * trace at that depth, shadow rays its scatter queued), indexed from depth -1 (whose shadow word
+ * stays 0: the camera queues none) to maxDepth + 1; then the entries (path slots) of the two
+ * ping-pong ray queues and of the shadow queue, `capacity` words each.
+ */
+export const queueLayoutWords = {
+  lengthsBase: queueCounterCount,
+  entriesBase: 128,
 } as const;
-export const dispatchArgWords = 4;
+
+/** Length word of the ray queue (kind 0) or of the shadow queue (kind 1) of bounce `depth` (>= -1). */
+export function queueLengthWord(depth: number, kind: 0 | 1): number {
+  return queueLayoutWords.lengthsBase + 2 * (depth + 1) + kind;
+}
+
+/** Words of the `queues` buffer for waves of `capacity` paths. */
+export function queueBufferWords(capacity: number): number {
+  return queueLayoutWords.entriesBase + 3 * capacity;
+}
 
 /** Paths continuing to this depth or deeper play Russian roulette (pbrt-v4 survival rule). */
 export const russianRouletteStartDepth = 3;
@@ -333,7 +345,8 @@ export const gpuConstants: Readonly<Record<string, number>> = Object.freeze({
   PRESENTATION_LINEAR,
   ...Object.fromEntries(Object.entries(adaptiveListSlots).map(([name, slot]) => [`ADAPTIVE_${snakeUpper(name)}`, slot])),
   ...Object.fromEntries(Object.entries(queueCounterSlots).map(([name, slot]) => [`COUNTER_${snakeUpper(name)}`, slot])),
-  ...Object.fromEntries(Object.entries(dispatchArgSlots).map(([name, slot]) => [`DISPATCH_ARGS_${snakeUpper(name)}`, slot])),
+  QUEUE_LENGTHS_BASE: queueLayoutWords.lengthsBase,
+  QUEUE_ENTRIES_BASE: queueLayoutWords.entriesBase,
 });
 
 function snakeUpper(name: string): string {

@@ -418,8 +418,8 @@ export const pathStateLayout: StructLayout = defineStructLayout('PathState', 4, 
   ['media', 'u32', 'nested medium stack: four 8-bit medium ids, innermost in the low byte (0: none)'],
 ]);
 
-/** A ray waiting for closest-hit intersection; the ray queues are the two halves of `rays`. */
-export const rayWorkItemLayout: StructLayout = defineStructLayout('RayWorkItem', 2, [
+/** The path's next ray, waiting for closest-hit intersection (queued by its slot). */
+export const rayWorkItemLayout: StructLayout = defineStructLayout('RayWorkItem', 3, [
   ['origin', 'vec3f'],
   ['slot', 'u32', 'path slot'],
   ['direction', 'vec3f', 'unit length'],
@@ -428,26 +428,20 @@ export const rayWorkItemLayout: StructLayout = defineStructLayout('RayWorkItem',
   ['coneSpread', 'f32', 'ray cone spread angle'],
 ]);
 
-/**
- * Output of intersection: hits are appended from the front of the shading queue, misses (escaped
- * rays) from the back, so one buffer holds both queues.
- */
-export const shadingWorkItemLayout: StructLayout = defineStructLayout('ShadingWorkItem', 2, [
-  ['origin', 'vec3f', 'ray origin'],
-  ['slot', 'u32'],
-  ['direction', 'vec3f'],
-  ['t', 'f32', 'hit distance'],
+/** What closest-hit intersection found for the path's ray: read by material evaluation. */
+export const pathHitLayout: StructLayout = defineStructLayout('PathHit', 1, [
+  ['t', 'f32', 'hit distance (-1 for an escaped ray)'],
   ['u', 'f32', 'barycentric of v1'],
   ['v', 'f32', 'barycentric of v2'],
   ['primitive', 'u32', 'the hit record in primitives (BVH order), INDEX_NONE for an escaped ray'],
-  ['coneWidth', 'f32', 'ray cone width at the hit'],
 ]);
 
 /**
- * The compact per-hit record material evaluation hands to the scatter kernel: the surface frame
- * and the resolved BSDF parameters after texture fetches and normal mapping. KHR extension
+ * The surface at a hit after material evaluation, as the scatter stage reads it: the surface frame
+ * and the resolved BSDF parameters after texture fetches and normal mapping. Material evaluation
+ * and scatter run in one kernel, so the record lives in registers, never in memory. KHR extension
  * parameters that textures vary travel packed (pack2x16float pairs, colours in [0, 1] as unorm8);
- * constant ones (iridescence IOR, the medium, dispersion) the scatter kernel re-reads from the
+ * constant ones (iridescence IOR, the medium, dispersion) the scatter stage re-reads from the
  * material heap. `flags` carries the material's MATERIAL_FLAG_* extension bits.
  */
 export const surfaceRecordLayout: StructLayout = defineStructLayout('SurfaceRecord', 3, [
@@ -501,26 +495,50 @@ export const sampleRecordLayout: StructLayout = defineStructLayout('SampleRecord
   ['reserved', 'u32'],
 ]);
 
-/** Per-wave constants (one tile, one sample): bound with a dynamic offset. */
-export const waveUniformsLayout: StructLayout = defineStructLayout('WaveUniforms', 2, [
-  ['tileOrigin', 'vec2u'],
-  ['tileSize', 'vec2u', 'list waves (adaptive sampling): (paths, 1)'],
-  ['sampleIndex', 'u32', 'sample number every pixel of the tile takes in this wave'],
-  ['activeOffset', 'u32', 'list waves: first entry of the active-pixel list; INDEX_NONE for tile waves'],
+/**
+ * Everything the wave keeps of one path, at its slot of the `paths` buffer: its state, its next ray
+ * and that ray's hit, its pending shadow ray and its sample. One record per path (array of
+ * structures) lets a kernel reach all of it through one binding; a kernel reads and writes only the
+ * members it uses. The queues hold slot numbers.
+ */
+export const pathRecordLayout: StructLayout = defineStructLayout('PathRecord', 1, [
+  ['state', pathStateLayout],
+  ['ray', rayWorkItemLayout, 'the next ray (camera ray, then each continuation)'],
+  ['hit', pathHitLayout, 'what closest-hit intersection found for `ray`'],
+  ['shadow', shadowRayLayout, 'the next-event-estimation shadow ray of the last scattering vertex'],
+  ['sample', sampleRecordLayout],
+]);
+
+/**
+ * Per-wave constants: bound with a dynamic offset. A wave takes the contiguous run
+ * [firstPath, firstPath + pathCount) of its range: full-frame waves, of the frame's pixels x
+ * samples (path i of the run: pixel (firstPath + i) mod pixels, sample firstSample + (firstPath +
+ * i) / pixels); list waves (adaptive sampling), of the step's active list entries x passes.
+ */
+export const waveUniformsLayout: StructLayout = defineStructLayout('WaveUniforms', 3, [
+  ['firstPath', 'u32', 'full-frame waves: pixel of the first path (< pixels); list waves: offset into the step range'],
+  ['firstSample', 'u32', 'full-frame waves: sample number of the first path'],
+  ['pathCount', 'u32', 'paths of the wave (list waves: an upper bound, the GPU list length bounds it)'],
+  ['passes', 'u32', 'list waves: samples each active pixel takes in this step'],
+  ['list', 'u32', '1: a list wave (adaptive sampling), 0: a full-frame wave'],
+  ['reserved0', 'u32'],
   ['reserved1', 'u32'],
   ['reserved2', 'u32'],
 ]);
 
-/** Per-bounce constants: which half of the ray buffer is read and which is written. */
-export const bounceUniformsLayout: StructLayout = defineStructLayout('BounceUniforms', 2, [
+/**
+ * Per-bounce constants: word indices into the `queues` buffer. Every bounce has its own length
+ * words (zeroed by the camera kernel), so no kernel resets a queue between bounces.
+ */
+export const bounceUniformsLayout: StructLayout = defineStructLayout('BounceUniforms', 3, [
   ['depth', 'u32'],
-  ['inCounter', 'u32', 'counter slot holding the input ray queue length'],
-  ['outCounter', 'u32', 'counter slot receiving the output ray queue length'],
-  ['inBase', 'u32', 'first index of the input ray queue in rays'],
-  ['outBase', 'u32', 'first index of the output ray queue in rays'],
-  ['reserved0', 'u32'],
-  ['reserved1', 'u32'],
-  ['reserved2', 'u32'],
+  ['rayCount', 'u32', 'length word of the ray queue this bounce traces and shades'],
+  ['rayQueue', 'u32', 'first entry of that ray queue'],
+  ['shadowCount', 'u32', 'length word of the shadow queue the previous bounce filled (traced with this bounce\'s rays)'],
+  ['shadowQueue', 'u32', 'first entry of the shadow queue'],
+  ['nextRayCount', 'u32', 'length word of the ray queue this bounce fills'],
+  ['nextRayQueue', 'u32', 'first entry of that ray queue'],
+  ['nextShadowCount', 'u32', 'length word of the shadow queue this bounce fills'],
 ]);
 
 /** Display resolve constants. */
@@ -588,10 +606,11 @@ export const wavefrontRecordLayouts = {
   FrameUniforms: frameUniformsLayout,
   PathState: pathStateLayout,
   RayWorkItem: rayWorkItemLayout,
-  ShadingWorkItem: shadingWorkItemLayout,
+  PathHit: pathHitLayout,
   SurfaceRecord: surfaceRecordLayout,
   ShadowRay: shadowRayLayout,
   SampleRecord: sampleRecordLayout,
+  PathRecord: pathRecordLayout,
   WaveUniforms: waveUniformsLayout,
   BounceUniforms: bounceUniformsLayout,
   ResolveUniforms: resolveUniformsLayout,
@@ -618,7 +637,8 @@ export const rendererWavefrontRecordSizes = {
   pathState: pathStateLayout.size,
   shadowRay: shadowRayLayout.size,
   rayWorkItem: rayWorkItemLayout.size,
-  shadingWorkItem: shadingWorkItemLayout.size,
+  pathHit: pathHitLayout.size,
+  pathRecord: pathRecordLayout.size,
   surfaceRecord: surfaceRecordLayout.size,
   sampleRecord: sampleRecordLayout.size,
   primitive: primitiveLayout.size,

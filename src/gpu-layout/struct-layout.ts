@@ -26,11 +26,15 @@ const typeInfo: Record<WgslFieldType, TypeInfo> = {
 
 export interface StructFieldLayout {
   readonly name: string;
-  readonly type: WgslFieldType;
+  /** A scalar or vector type, or the name of the nested struct (see `struct`). */
+  readonly type: WgslFieldType | string;
   readonly offset: number;
   readonly size: number;
+  /** Components of a scalar or vector field; 0 for a nested struct. */
   readonly components: number;
-  readonly scalar: 'f32' | 'u32' | 'i32';
+  readonly scalar: 'f32' | 'u32' | 'i32' | null;
+  /** The layout of a nested struct field (WGSL structures nest with their own alignment). */
+  readonly struct?: StructLayout;
   /** Why the field exists; emitted as a WGSL comment. */
   readonly doc?: string;
 }
@@ -44,7 +48,7 @@ export interface StructLayout {
   readonly align: number;
 }
 
-export type StructFieldSpec = readonly [name: string, type: WgslFieldType, doc?: string];
+export type StructFieldSpec = readonly [name: string, type: WgslFieldType | StructLayout, doc?: string];
 
 const roundUp = (n: number, k: number): number => Math.ceil(n / k) * k;
 
@@ -55,6 +59,14 @@ export function defineStructLayout(name: string, version: number, specs: readonl
   const fields: StructFieldLayout[] = specs.map(([fieldName, type, doc]) => {
     if (seen.has(fieldName)) throw new Error(`struct ${name}: duplicate field ${fieldName}`);
     seen.add(fieldName);
+    if (typeof type !== 'string') {
+      // A nested structure: AlignOf is its own, SizeOf its (already rounded) size.
+      offset = roundUp(offset, type.align);
+      align = Math.max(align, type.align);
+      const field: StructFieldLayout = Object.freeze({ name: fieldName, type: type.name, offset, size: type.size, components: 0, scalar: null, struct: type, ...(doc ? { doc } : {}) });
+      offset += type.size;
+      return field;
+    }
     const info = typeInfo[type];
     offset = roundUp(offset, info.align);
     align = Math.max(align, info.align);
@@ -79,7 +91,15 @@ export function structLayoutToWgsl(layout: StructLayout): string {
   return `// ${layout.name} v${layout.version}: ${layout.size} bytes, generated from src/gpu-layout/records.ts\nstruct ${layout.name} {\n${lines.join('\n')}\n}\n`;
 }
 
-export type StructValues = Record<string, number | ArrayLike<number>>;
+/** Field values by name; a nested struct field takes the nested struct's values. */
+export type StructValues = { [field: string]: number | ArrayLike<number> | StructValues };
+
+/** The scalar and vector fields of a layout, nested structs flattened (dotted names, absolute offsets). */
+export function leafFields(layout: StructLayout, prefix = '', base = 0): StructFieldLayout[] {
+  return layout.fields.flatMap((f) =>
+    f.struct ? leafFields(f.struct, `${prefix}${f.name}.`, base + f.offset) : [{ ...f, name: `${prefix}${f.name}`, offset: base + f.offset }],
+  );
+}
 
 export function fieldOf(layout: StructLayout, name: string): StructFieldLayout {
   const field = layout.fields.find((f) => f.name === name);
@@ -89,12 +109,20 @@ export function fieldOf(layout: StructLayout, name: string): StructFieldLayout {
 
 /** Writes `values` (missing fields are zero) into `view` at record `index`. */
 export function writeStruct(layout: StructLayout, view: DataView, index: number, values: StructValues): void {
-  const base = index * layout.size;
+  writeStructAt(layout, view, index * layout.size, values);
+}
+
+function writeStructAt(layout: StructLayout, view: DataView, base: number, values: StructValues): void {
   for (const field of layout.fields) {
     const value = values[field.name];
     if (value === undefined) continue;
+    if (field.struct) {
+      writeStructAt(field.struct, view, base + field.offset, value as StructValues);
+      continue;
+    }
+    if (typeof value === 'object' && !('length' in value)) throw new Error(`struct ${layout.name}: field ${field.name} is not a struct`);
     for (let c = 0; c < field.components; c++) {
-      const v = typeof value === 'number' ? (c === 0 ? value : 0) : (value[c] ?? 0);
+      const v = typeof value === 'number' ? (c === 0 ? value : 0) : ((value as ArrayLike<number>)[c] ?? 0);
       const at = base + field.offset + c * 4;
       if (field.scalar === 'f32') view.setFloat32(at, v, true);
       else if (field.scalar === 'u32') view.setUint32(at, v >>> 0, true);
@@ -103,10 +131,11 @@ export function writeStruct(layout: StructLayout, view: DataView, index: number,
   }
 }
 
+/** Reads record `index`; nested structs come back flattened under dotted names (leafFields). */
 export function readStruct(layout: StructLayout, view: DataView, index: number): Record<string, number | number[]> {
   const base = index * layout.size;
   const out: Record<string, number | number[]> = {};
-  for (const field of layout.fields) {
+  for (const field of leafFields(layout)) {
     const comps: number[] = [];
     for (let c = 0; c < field.components; c++) {
       const at = base + field.offset + c * 4;

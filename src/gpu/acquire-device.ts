@@ -14,6 +14,8 @@ export interface AcquiredGpuDevice {
   ownsDevice: boolean;
   adapterDescription: string;
   timestampQueries: boolean;
+  /** A CPU implementation (lavapipe, SwiftShader, WARP): the adapter says it is a fallback or software one. */
+  softwareAdapter: boolean;
 }
 
 let nodeGpu: Promise<GPU | undefined> | undefined;
@@ -57,6 +59,7 @@ export async function acquireGpuDevice(options: AcquireGpuDeviceOptions = {}): P
       ownsDevice: false,
       adapterDescription: describeAdapterInfo(device.adapterInfo, 'shared device'),
       timestampQueries: device.features.has('timestamp-query'),
+      softwareAdapter: isSoftwareAdapter(device.adapterInfo),
     };
   }
   const gpu = await getGpu();
@@ -77,7 +80,16 @@ export async function acquireGpuDevice(options: AcquireGpuDeviceOptions = {}): P
     ownsDevice: true,
     adapterDescription: describeAdapter(adapter),
     timestampQueries: device.features.has('timestamp-query'),
+    softwareAdapter: isSoftwareAdapter(adapter.info),
   };
+}
+
+/** Whether the adapter runs on the CPU (GPUAdapterInfo.isFallbackAdapter, or a software architecture or driver name). */
+export function isSoftwareAdapter(info: Partial<GPUAdapterInfo> | undefined): boolean {
+  if (!info) return false;
+  if ((info as { isFallbackAdapter?: boolean }).isFallbackAdapter === true) return true;
+  const text = [info.architecture, info.device, info.description].filter((p) => typeof p === 'string').join(' ');
+  return /software|llvmpipe|lavapipe|swiftshader|warp/i.test(text);
 }
 
 function describeAdapterInfo(info: Partial<GPUAdapterInfo> | undefined, fallback: string): string {

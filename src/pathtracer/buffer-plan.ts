@@ -1,5 +1,5 @@
 import { GpuRendererError } from '../errors/gpu-renderer-error.ts';
-import { adaptiveListSlots, dispatchArgWords, dynamicUniformStride, queueCounterCount } from '../gpu-layout/constants.ts';
+import { adaptiveListSlots, dynamicUniformStride, queueBufferWords } from '../gpu-layout/constants.ts';
 import {
   alphaPrimitiveLayout,
   bvhNodeLayout,
@@ -7,16 +7,11 @@ import {
   instanceLayout,
   lightingUniformsLayout,
   lightRecordLayout,
-  pathStateLayout,
+  pathRecordLayout,
   primitiveLayout,
-  rayWorkItemLayout,
   resolveUniformsLayout,
-  sampleRecordLayout,
   adaptiveUniformsLayout,
   denoiseUniformsLayout,
-  shadingWorkItemLayout,
-  shadowRayLayout,
-  surfaceRecordLayout,
 } from '../gpu-layout/records.ts';
 import type { PathTracerBindingName } from '../gpu-layout/bindings.ts';
 
@@ -41,11 +36,14 @@ export type PlannedBufferName = Exclude<PathTracerBindingName, 'textureAtlas' | 
 export interface BufferPlanInput {
   width: number;
   height: number;
-  tileSize: number;
+  /** Paths per wave (wave-capacity.ts): what the queue buffers hold. */
+  wavePaths: number;
   maxDepth: number;
   aovs: boolean;
   /** Output features that size full-frame buffers (issue 9); all false keeps them minimal. */
   output?: { moments: boolean; adaptive: boolean; denoise: boolean };
+  /** Frames whose statistics may be in flight at once (one timestamp pair each); default 1. */
+  framesInFlight?: number;
   /** Waves encoded per command buffer (maxFramePassesPerSubmission); default maxWavesPerSubmission. */
   wavesPerSubmission?: number;
   /** Bytes of the vertex streams and of the index buffer (pack-vertices.ts vertexStreamBytes). */
@@ -62,13 +60,9 @@ export interface BufferPlanInput {
   materialCells: number;
 }
 
-export function queueCapacity(width: number, height: number, tileSize: number): number {
-  return Math.min(tileSize * tileSize, width * height);
-}
-
 /** Byte size of every buffer a render needs, computed before anything is allocated. */
 export function planBuffers(i: BufferPlanInput): Record<PlannedBufferName, PlannedBuffer> {
-  const capacity = queueCapacity(i.width, i.height, i.tileSize);
+  const capacity = i.wavePaths;
   const pixels = i.width * i.height;
   const n = Math.max(1, i.primitiveCount);
   const scene = (bytes: number, what: string, field = 'meshes'): PlannedBuffer => ({ bytes, category: 'scene', field, what });
@@ -89,14 +83,8 @@ export function planBuffers(i: BufferPlanInput): Record<PlannedBufferName, Plann
     lights: scene(i.lightHeapCells !== undefined ? Math.max(1, i.lightHeapCells) * 16 : Math.max(1, i.lightCount) * lightRecordLayout.size, 'the lights heap'),
     lighting: frame(lightingUniformsLayout.size, 'the lighting constants'),
     frame: frame(frameUniformsLayout.size, 'the frame constants'),
-    paths: queue(capacity * pathStateLayout.size, 'the path states'),
-    rays: queue(2 * capacity * rayWorkItemLayout.size, 'the ray queues'),
-    shadingQueue: queue(capacity * shadingWorkItemLayout.size, 'the shading queue'),
-    surfaces: queue(capacity * surfaceRecordLayout.size, 'the surface records'),
-    shadowRays: queue(capacity * shadowRayLayout.size, 'the shadow-ray queue'),
-    counters: queue(queueCounterCount * 4, 'the queue counters'),
-    samples: queue(capacity * sampleRecordLayout.size, 'the sample records'),
-    dispatchArgs: queue(dispatchArgWords * 4, 'the indirect dispatch arguments'),
+    paths: queue(capacity * pathRecordLayout.size, 'the path records'),
+    queues: queue(queueBufferWords(capacity) * 4, 'the statistics and ray queues'),
     wave: queue((i.wavesPerSubmission ?? maxWavesPerSubmission) * dynamicUniformStride, 'the wave constants'),
     bounce: queue((i.maxDepth + 1) * dynamicUniformStride, 'the bounce constants'),
     film: frame(pixels * 16, 'the accumulation buffer (width x height)'),
@@ -112,7 +100,7 @@ export function planBuffers(i: BufferPlanInput): Record<PlannedBufferName, Plann
     denoised: frame(perPixel(out.denoise) * 16, 'the denoised image (width x height)'),
     displayUniforms: frame(resolveUniformsLayout.size, 'the display constants'),
     displayPixels: frame(pixels * 4, 'the display pixels (width x height)'),
-    timestamps: frame(16, 'the timestamp results'),
+    timestamps: frame(256 * (i.framesInFlight ?? 1), 'the timestamp results'),
   };
 }
 

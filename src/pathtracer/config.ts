@@ -8,6 +8,9 @@ import type { WavefrontPathTracingOptions } from './types.ts';
 
 export const maxWavefrontDepth = 32;
 export const maxWavefrontImageSize = 16384;
+/** Frames renderFrame keeps in flight by default (statistics come back through a ring this deep). */
+export const defaultFramesInFlight = 2;
+export const maxFramesInFlight = 4;
 
 /** Validated renderer settings (everything but the scene geometry). */
 export interface WavefrontPathTracingComputeConfig {
@@ -15,7 +18,10 @@ export interface WavefrontPathTracingComputeConfig {
   height: number;
   maxDepth: number;
   samplesPerPixel: number;
-  tileSize: number;
+  /** Explicit bound on paths per wave (tileSize^2); null: sized to the device and the work. */
+  tileSize: number | null;
+  /** Frames whose submission may run ahead of their statistics (renderFrame). */
+  framesInFlight: number;
   seed: number;
   camera: WavefrontCamera;
   /** Uniform environment radiance; black when omitted. */
@@ -36,7 +42,7 @@ const toneMappings: readonly WavefrontToneMapping[] = ['neutral', 'aces', 'linea
 
 /** Every option name the renderer understands; any other key is a typed error, never ignored. */
 export const wavefrontOptionNames: ReadonlySet<string> = new Set<keyof WavefrontPathTracingOptions>([
-  'width', 'height', 'maxDepth', 'samplesPerPixel', 'tileSize', 'seed', 'camera', 'meshes', 'instances', 'materials', 'textures',
+  'width', 'height', 'maxDepth', 'samplesPerPixel', 'tileSize', 'framesInFlight', 'seed', 'camera', 'meshes', 'instances', 'materials', 'textures',
   'images', 'sceneObjects', 'lights', 'environment', 'toneMapping', 'exposure', 'aovs', 'shaderSpecialization', 'canvas', 'device', 'powerPreference',
   ...outputOptionNames,
   // Lighting (src/lighting/lighting-options.ts).
@@ -54,7 +60,8 @@ export function createWavefrontPathTracingComputeConfig(options: Partial<Wavefro
   const height = requireInteger(options.height, 'height', { min: 1, max: maxWavefrontImageSize });
   const maxDepth = options.maxDepth === undefined ? 8 : requireInteger(options.maxDepth, 'maxDepth', { min: 1, max: maxWavefrontDepth });
   const samplesPerPixel = options.samplesPerPixel === undefined ? 1 : requireInteger(options.samplesPerPixel, 'samplesPerPixel', { min: 1, max: 65536 });
-  const tileSize = options.tileSize === undefined ? 256 : requireInteger(options.tileSize, 'tileSize', { min: 8, max: 1024 });
+  const tileSize = options.tileSize === undefined ? null : requireInteger(options.tileSize, 'tileSize', { min: 8, max: 1024 });
+  const framesInFlight = options.framesInFlight === undefined ? defaultFramesInFlight : requireInteger(options.framesInFlight, 'framesInFlight', { min: 1, max: maxFramesInFlight });
   const seed = options.seed === undefined ? 0 : requireInteger(options.seed, 'seed', { min: 0, max: 0xffffffff });
   const camera = normalizeWavefrontCamera(options.camera);
   let environment: [number, number, number] = [0, 0, 0];
@@ -73,7 +80,7 @@ export function createWavefrontPathTracingComputeConfig(options: Partial<Wavefro
   if (options.energyCompensation !== undefined && typeof options.energyCompensation !== 'boolean') fail('INVALID_OPTION', 'energyCompensation', 'expected a boolean');
   const output = parseOutputOptions(options);
   return {
-    width, height, maxDepth, samplesPerPixel, tileSize, seed, camera, environment, toneMapping, exposure, aovs: options.aovs ?? false, output, lighting,
+    width, height, maxDepth, samplesPerPixel, tileSize, framesInFlight, seed, camera, environment, toneMapping, exposure, aovs: options.aovs ?? false, output, lighting,
     energyCompensation: options.energyCompensation ?? true,
   };
 }

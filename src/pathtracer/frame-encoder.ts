@@ -1,8 +1,8 @@
-import { dispatchArgSlots, dynamicUniformStride, rendererWavefrontComputeWorkgroupSize } from '../gpu-layout/constants.ts';
+import { dynamicUniformStride, rendererWavefrontComputeWorkgroupSize } from '../gpu-layout/constants.ts';
 import type { KernelBindGroups } from './bind-groups.ts';
 import type { DispatchTally } from './dispatch-tally.ts';
 import type { WavefrontKernelName } from './pipelines.ts';
-import type { Wave } from './tiling.ts';
+import type { Wave } from './waves.ts';
 
 /** Dynamic uniform offsets of the current wave and bounce. */
 interface Offsets {
@@ -12,55 +12,65 @@ interface Offsets {
 
 /**
  * Encodes waves into a compute pass: per wave, camera rays, then per bounce (pbrt-v4's wavefront
- * stages) intersection -> material evaluation -> scatter (escaped rays included) -> shadow rays, all sized
- * by one indirect dispatch whose arguments the GPU writes from the ray queue's length (each stage
- * stops at its own queue's length; one sizing kernel per bounce keeps the dispatch count, which a
- * CPU driver pays for in synchronisation, low), then the accumulation. `waves[i]` uses
- * wave-uniform slot i; bounce d uses bounce slot d.
+ * stages, fused where no global barrier separates them) one traversal dispatch (this bounce's
+ * closest hits and the previous bounce's shadow rays) and one shading dispatch (material
+ * evaluation and scatter), then the accumulation: 2 (maxDepth + 1) + 2 dispatches per wave. The
+ * per-bounce kernels loop over their GPU-side queue lengths with a grid of at most `gridLimit`
+ * workgroups (direct dispatches: nothing waits on a CPU readback, and no indirect dispatch pays
+ * Dawn's validation pass). `waves[i]` uses wave-uniform slot i; bounce d uses bounce slot d.
  */
 export class WavefrontEncoder {
-  private readonly kernels: Record<WavefrontKernelName, KernelBindGroups>;
-  private readonly dispatchArgs: GPUBuffer;
-  /** Upper bound of an indirect dispatch's workgroups: the queue capacity's. */
-  private readonly indirectBound: number;
+  private kernels: Record<WavefrontKernelName, KernelBindGroups>;
+  private readonly gridLimit: number;
+  private readonly pixels: number;
   /** Receives a count of every dispatch (frame diagnostics); replaced per frame. */
   tally: DispatchTally | null = null;
 
-  constructor(kernels: Record<WavefrontKernelName, KernelBindGroups>, dispatchArgs: GPUBuffer, queueCapacity = 0) {
+  /**
+   * @param gridLimit most workgroups of a grid-stride dispatch (device-sized: enough to fill the
+   *   GPU, few on a CPU adapter, whose every workgroup costs a task).
+   */
+  constructor(kernels: Record<WavefrontKernelName, KernelBindGroups>, pixels: number, gridLimit: number) {
     this.kernels = kernels;
-    this.dispatchArgs = dispatchArgs;
-    this.indirectBound = Math.ceil(queueCapacity / rendererWavefrontComputeWorkgroupSize);
+    this.pixels = pixels;
+    this.gridLimit = gridLimit;
   }
 
-  private dispatch(pass: GPUComputePassEncoder, name: WavefrontKernelName, offsets: Offsets, work: number | { indirect: number }): void {
+  /** New bind groups (the queue buffers were reallocated). */
+  rebind(kernels: Record<WavefrontKernelName, KernelBindGroups>): void {
+    this.kernels = kernels;
+  }
+
+  private dispatch(pass: GPUComputePassEncoder, name: WavefrontKernelName, offsets: Offsets, workgroups: number): void {
     const k = this.kernels[name];
     pass.setPipeline(k.pipeline);
     k.groups.forEach((group, g) => pass.setBindGroup(g, group, k.dynamic[g]!.map((d) => offsets[d as keyof Offsets])));
-    if (typeof work === 'number') {
-      pass.dispatchWorkgroups(work);
-      this.tally?.direct(work, name === 'prepareIntersect' ? 1 : rendererWavefrontComputeWorkgroupSize);
-    } else {
-      pass.dispatchWorkgroupsIndirect(this.dispatchArgs, work.indirect * 4);
-      this.tally?.indirect(this.indirectBound);
-    }
+    pass.dispatchWorkgroups(workgroups);
+    this.tally?.direct(workgroups, rendererWavefrontComputeWorkgroupSize);
+  }
+
+  /** Workgroups covering `items` invocations, one each. */
+  private static cover(items: number): number {
+    return Math.max(1, Math.ceil(items / rendererWavefrontComputeWorkgroupSize));
+  }
+
+  /** Workgroups of a grid-stride loop over at most `items` queue entries. */
+  private grid(items: number): number {
+    return Math.min(WavefrontEncoder.cover(items), this.gridLimit);
   }
 
   encode(pass: GPUComputePassEncoder, waves: readonly Wave[], maxDepth: number): void {
-    const wg = rendererWavefrontComputeWorkgroupSize;
     waves.forEach((w, i) => {
-      const pixels = w.tileSize[0] * w.tileSize[1];
+      const paths = w.pathCount;
       const o: Offsets = { wave: i * dynamicUniformStride, bounce: 0 };
-      this.dispatch(pass, 'camera', o, Math.ceil(pixels / wg));
+      this.dispatch(pass, 'camera', o, WavefrontEncoder.cover(paths));
       for (let d = 0; d <= maxDepth; d++) {
         o.bounce = d * dynamicUniformStride;
-        const rays = { indirect: dispatchArgSlots.intersect };
-        this.dispatch(pass, 'prepareIntersect', o, 1);
-        this.dispatch(pass, 'intersect', o, rays);
-        this.dispatch(pass, 'evaluateMaterials', o, rays);
-        this.dispatch(pass, 'scatter', o, rays);
-        if (d < maxDepth) this.dispatch(pass, 'shadow', o, rays);
+        // Each path queues at most one ray and one shadow ray per bounce.
+        this.dispatch(pass, 'trace', o, this.grid(d === 0 ? paths : 2 * paths));
+        this.dispatch(pass, 'shade', o, this.grid(paths));
       }
-      this.dispatch(pass, 'accumulate', o, Math.ceil(pixels / wg));
+      this.dispatch(pass, 'accumulate', o, WavefrontEncoder.cover(w.list ? paths : Math.min(paths, this.pixels)));
     });
   }
 }

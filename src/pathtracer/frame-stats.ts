@@ -3,41 +3,100 @@ import { BufferUsage, MapMode } from '../gpu/webgpu-constants.ts';
 import type { WavefrontAdaptiveFrameStats, WavefrontGpuParallelism, WavefrontOutputState, WavefrontRadianceDiagnostics, WavefrontTerminalRadiance } from './output-types.ts';
 import type { WavefrontFrameStats, WavefrontMemoryStats } from './types.ts';
 
-/** Staging copies of the counters (and GPU timestamps) a frame reads back. */
-export interface FrameReadback {
+/** Byte stride of the slots of the timestamp resolve buffer (resolveQuerySet offsets are 256-aligned). */
+export const timestampResolveStride = 256;
+
+/** What a frame's readback holds once mapped: its statistics words and its GPU time. */
+export interface FrameReadout {
+  counters: Uint32Array;
+  gpuTimeMs: number | null;
+}
+
+interface ReadbackSlot {
+  index: number;
   counters: GPUBuffer;
   times: GPUBuffer | null;
+  /** Settles once the slot's last readback was mapped and copied out (the slot is free again). */
+  busy: Promise<unknown> | null;
 }
 
-/** Encodes the copies of the counter buffer and resolved timestamps into mappable buffers. */
-export function encodeFrameReadback(device: GPUDevice, encoder: GPUCommandEncoder, counters: GPUBuffer, timing: { querySet: GPUQuerySet; resolve: GPUBuffer } | null): FrameReadback {
-  const bytes = queueCounterCount * 4;
-  const staging = device.createBuffer({ size: bytes, usage: BufferUsage.MAP_READ | BufferUsage.COPY_DST });
-  encoder.copyBufferToBuffer(counters, 0, staging, 0, bytes);
-  let times: GPUBuffer | null = null;
-  if (timing) {
-    times = device.createBuffer({ size: 16, usage: BufferUsage.MAP_READ | BufferUsage.COPY_DST });
-    encoder.resolveQuerySet(timing.querySet, 0, 2, timing.resolve, 0);
-    encoder.copyBufferToBuffer(timing.resolve, 0, times, 0, 16);
+/**
+ * A ring of staging buffers through which frame statistics come back without stalling the next
+ * submission: each frame copies the statistics block of the `queues` buffer (and resolves its pair of
+ * timestamp queries) into its own slot, and a new frame waits only when every slot still awaits
+ * its mapping, so at most `slots` frames are in flight.
+ */
+export class FrameReadbackRing {
+  readonly timing: { querySet: GPUQuerySet; resolve: GPUBuffer } | null;
+  private readonly ring: ReadbackSlot[];
+  private next = 0;
+
+  constructor(device: GPUDevice, slots: number, timing: { querySet: GPUQuerySet; resolve: GPUBuffer } | null) {
+    this.timing = timing;
+    this.ring = Array.from({ length: slots }, (_, index) => ({
+      index,
+      counters: device.createBuffer({ label: `frame statistics ${index}`, size: queueCounterCount * 4, usage: BufferUsage.MAP_READ | BufferUsage.COPY_DST }),
+      times: timing ? device.createBuffer({ label: `frame timestamps ${index}`, size: 16, usage: BufferUsage.MAP_READ | BufferUsage.COPY_DST }) : null,
+      busy: null,
+    }));
   }
-  return { counters: staging, times };
-}
 
-/** Maps the readback; returns the counters and the GPU time (ms) where timestamps exist. */
-export async function readFrameReadback(r: FrameReadback): Promise<{ counters: Uint32Array; gpuTimeMs: number | null }> {
-  try {
-    await r.counters.mapAsync(MapMode.READ);
-    const counters = new Uint32Array(r.counters.getMappedRange().slice(0));
-    let gpuTimeMs: number | null = null;
-    if (r.times) {
-      await r.times.mapAsync(MapMode.READ);
-      const t = new BigUint64Array(r.times.getMappedRange().slice(0));
-      gpuTimeMs = t[1]! > t[0]! ? Number(t[1]! - t[0]!) / 1e6 : null;
+  get slots(): number {
+    return this.ring.length;
+  }
+
+  /** The next slot, once it is free (the frame `slots` frames earlier has been read). */
+  async acquire(): Promise<number> {
+    const slot = this.ring[this.next]!;
+    this.next = (this.next + 1) % this.ring.length;
+    if (slot.busy) await slot.busy;
+    return slot.index;
+  }
+
+  /** Timestamp writes of a compute pass of the frame in `slot`: begin at its first pass, end at every pass (the last wins). */
+  timestampWrites(slot: number, first: boolean): GPUComputePassTimestampWrites | undefined {
+    if (!this.timing) return undefined;
+    return { querySet: this.timing.querySet, ...(first ? { beginningOfPassWriteIndex: 2 * slot } : {}), endOfPassWriteIndex: 2 * slot + 1 };
+  }
+
+  /** Encodes the copies of the statistics (and the resolved timestamps) into `slot`. */
+  encodeCopy(encoder: GPUCommandEncoder, slot: number, queues: GPUBuffer): void {
+    const s = this.ring[slot]!;
+    encoder.copyBufferToBuffer(queues, 0, s.counters, 0, queueCounterCount * 4);
+    if (this.timing && s.times) {
+      encoder.resolveQuerySet(this.timing.querySet, 2 * slot, 2, this.timing.resolve, timestampResolveStride * slot);
+      encoder.copyBufferToBuffer(this.timing.resolve, timestampResolveStride * slot, s.times, 0, 16);
     }
-    return { counters, gpuTimeMs };
-  } finally {
-    r.counters.destroy();
-    r.times?.destroy();
+  }
+
+  /** Maps `slot` after the submission that copied into it; the slot is free again once this settles. */
+  read(slot: number): Promise<FrameReadout> {
+    const s = this.ring[slot]!;
+    const readout = (async (): Promise<FrameReadout> => {
+      await Promise.all([s.counters.mapAsync(MapMode.READ), s.times?.mapAsync(MapMode.READ)]);
+      try {
+        const counters = new Uint32Array(s.counters.getMappedRange().slice(0));
+        let gpuTimeMs: number | null = null;
+        if (s.times) {
+          const t = new BigUint64Array(s.times.getMappedRange().slice(0));
+          gpuTimeMs = t[1]! > t[0]! ? Number(t[1]! - t[0]!) / 1e6 : null;
+        }
+        return { counters, gpuTimeMs };
+      } finally {
+        s.counters.unmap();
+        s.times?.unmap();
+      }
+    })();
+    s.busy = readout.catch(() => undefined);
+    return readout;
+  }
+
+  destroy(): void {
+    for (const s of this.ring) {
+      s.counters.destroy();
+      s.times?.destroy();
+    }
+    this.timing?.querySet.destroy();
   }
 }
 
@@ -78,6 +137,7 @@ export interface FrameFacts {
   memory: WavefrontMemoryStats;
   tiles: number;
   waves: number;
+  wavePaths: number;
   submissions: number;
   deviceLost: boolean;
   gpuParallelism: WavefrontGpuParallelism;
@@ -122,6 +182,7 @@ export function frameStatsFromCounters(counters: Uint32Array, frame: FrameFacts)
     memory: frame.memory,
     tiles: frame.tiles,
     waves: frame.waves,
+    wavePaths: frame.wavePaths,
     adaptive: frame.adaptive,
     denoised: frame.denoised,
     gpuParallelism: frame.gpuParallelism,

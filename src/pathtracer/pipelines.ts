@@ -9,11 +9,8 @@ import { programSpecs, type ProgramName } from '../shaders/programs.ts';
 /** The compute kernels of one wavefront wave, with the program and entry point of each. */
 export const wavefrontKernels = {
   camera: { program: 'camera', entryPoint: 'generate_camera_rays' },
-  prepareIntersect: { program: 'prepare', entryPoint: 'prepare_intersect' },
-  intersect: { program: 'intersect', entryPoint: 'intersect_closest' },
-  evaluateMaterials: { program: 'evaluateMaterials', entryPoint: 'evaluate_materials' },
-  scatter: { program: 'scatter', entryPoint: 'scatter_paths' },
-  shadow: { program: 'shadow', entryPoint: 'trace_shadow_rays' },
+  trace: { program: 'trace', entryPoint: 'trace_rays' },
+  shade: { program: 'shade', entryPoint: 'shade_hits' },
   accumulate: { program: 'accumulate', entryPoint: 'accumulate_samples' },
 } as const satisfies Record<string, { program: ProgramName; entryPoint: string }>;
 

@@ -12,7 +12,7 @@ import { normalizeWavefrontScene, type NormalizedScene } from '../scene/normaliz
 import type { WavefrontCameraInput } from '../scene/types.ts';
 import { allShaderFeatures, type ShaderFeatures } from '../shaders/features.ts';
 import { createKernelBindGroups, type PathTracerResourceMap } from './bind-groups.ts';
-import { checkBufferLimits, planBuffers, queueCapacity, type BufferPlanInput, type PlannedBuffer, type PlannedBufferName } from './buffer-plan.ts';
+import { checkBufferLimits, planBuffers, type BufferPlanInput, type PlannedBuffer, type PlannedBufferName } from './buffer-plan.ts';
 import { normalizeWavefrontCamera } from './camera.ts';
 import { resolveCanvasTarget } from './canvas-target.ts';
 import { createWavefrontPathTracingComputeConfig, type WavefrontPathTracingComputeConfig } from './config.ts';
@@ -21,7 +21,7 @@ import { AdaptiveScheduler, createAdaptivePipelines } from './adaptive-scheduler
 import { AtrousDenoisePass, createDenoisePipelines } from './denoise-pass.ts';
 import { DispatchTally } from './dispatch-tally.ts';
 import { readAovImage, readMeanRadiance, readRgbaImage, type InstanceIds } from './film.ts';
-import { encodeFrameReadback, frameStatsFromCounters, readFrameReadback } from './frame-stats.ts';
+import { FrameReadbackRing, frameStatsFromCounters, type FrameReadout } from './frame-stats.ts';
 import { parseRenderFrameOptions, type ParsedFrameOptions } from './output-options.ts';
 import type { WavefrontOutputState, WavefrontRenderProgress } from './output-types.ts';
 import { WavefrontEncoder } from './frame-encoder.ts';
@@ -32,7 +32,8 @@ import { prepareScene, type PreparedScene } from './scene/prepare-scene.ts';
 import { vertexStreamBytes } from './scene/pack-vertices.ts';
 import { materialFeatures } from './scene/material-features.ts';
 import { materialHeapCells } from './scene/pack-materials.ts';
-import { planListWaves, planWaves, tileCount, type Wave } from './tiling.ts';
+import { planFrameWaves, planListWaves, type Wave } from './waves.ts';
+import { deviceWavePaths, gridWorkgroupLimit, waveBound } from './wave-capacity.ts';
 import type {
   WavefrontFrameStats,
   WavefrontMemoryStats,
@@ -46,7 +47,7 @@ import type {
 import { packBounceUniforms, packDisplayUniforms, packFrameUniforms, packWaveUniforms } from './uniforms.ts';
 
 /** Sizes known from the validated scene, before the BVH is built: what the first limit check uses. */
-function planInput(config: WavefrontPathTracingComputeConfig, scene: NormalizedScene): BufferPlanInput {
+function planInput(config: WavefrontPathTracingComputeConfig, scene: NormalizedScene, wavePaths: number): BufferPlanInput {
   let alpha = 0;
   let lights = 0;
   for (const inst of scene.instances) {
@@ -58,11 +59,12 @@ function planInput(config: WavefrontPathTracingComputeConfig, scene: NormalizedS
   return {
     width: config.width,
     height: config.height,
-    tileSize: config.tileSize,
+    wavePaths,
     maxDepth: config.maxDepth,
     aovs: outputFeatures(config).aovs,
     output: { moments: outputFeatures(config).moments, adaptive: config.output.adaptive !== null, denoise: config.output.denoise !== null },
     wavesPerSubmission: config.output.maxFramePassesPerSubmission,
+    framesInFlight: config.framesInFlight,
     ...vertexStreamBytes(scene.meshes),
     primitiveCount: scene.triangleCount + scene.sceneObjects.length,
     alphaPrimitiveCount: alpha,
@@ -135,19 +137,24 @@ export async function createWavefrontPathTracingComputeRenderer(options: Wavefro
   });
   try {
     const limits = acquired.device.limits;
-    const estimate = planInput(config, scene);
+    // Buffers are checked at the largest wave this renderer may grow to; they start at the work of
+    // one call of samplesPerPixel and grow when a frame asks for more (growQueues).
+    const maxWavePaths = waveBound(deviceWavePaths(limits), config.tileSize);
+    const estimate = planInput(config, scene, maxWavePaths);
     checkBufferLimits(limits, planBuffers(estimate));
     const prepared = await prepareScene(scene, { maxTextureDimension2D: limits.maxTextureDimension2D, maxTextureArrayLayers: limits.maxTextureArrayLayers }, { energyCompensation: config.energyCompensation });
     const lighting = buildGpuLighting({ config: config.lighting, triangles: { records: prepared.lights, count: prepared.lightCount }, sceneCenter: prepared.sceneCenter, sceneRadius: prepared.sceneRadius });
     const plan = planBuffers({ ...estimate, materialCells: prepared.materials.byteLength / 16, lightCount: prepared.lightCount, lightHeapCells: lighting.heap.byteLength / 16, primitiveCount: prepared.primitiveCount });
     checkBufferLimits(limits, plan);
+    const wavePaths = Math.min(maxWavePaths, config.width * config.height * config.samplesPerPixel);
+    const initialPlan = planBuffers({ ...estimate, materialCells: prepared.materials.byteLength / 16, lightCount: prepared.lightCount, lightHeapCells: lighting.heap.byteLength / 16, primitiveCount: prepared.primitiveCount, wavePaths });
     const features = specialization === 'off' ? allShaderFeatures : sceneFeatures(prepared, lighting, config);
     const [pipelines, adaptivePipelines, denoisePipelines] = await Promise.all([
       pathTracerPipelines(acquired.device, features),
       config.output.adaptive ? createAdaptivePipelines(acquired.device, features) : null,
       config.output.denoise ? createDenoisePipelines(acquired.device, features) : null,
     ]);
-    const renderer = new WavefrontRenderer(acquired, config, scene, prepared, lighting, { ...pipelines, adaptive: adaptivePipelines, denoise: denoisePipelines }, plan);
+    const renderer = new WavefrontRenderer(acquired, config, scene, prepared, lighting, { ...pipelines, adaptive: adaptivePipelines, denoise: denoisePipelines }, initialPlan, { wavePaths, maxWavePaths });
     if (canvas) await renderer.attachCanvas(canvas);
     return renderer;
   } catch (error) {
@@ -168,6 +175,8 @@ type RendererPipelines = PathTracerPipelines & {
 interface FrameOutcome {
   samplesAdded: number;
   waves: number;
+  /** Paths per wave when the frame's last wave was encoded. */
+  wavePaths: number;
   submissions: number;
   tally: DispatchTally;
   pixelSamples: number;
@@ -179,16 +188,23 @@ class WavefrontRenderer extends EventTarget implements WavefrontPathTracingRende
   private readonly adapter: string;
   private config: WavefrontPathTracingComputeConfig;
   private readonly scene: { instanceCount: number; sceneObjectCount: number; prepared: PreparedScene };
-  private readonly capacity: number;
+  /** Paths per wave the queue buffers hold now, and the most they may grow to. */
+  private capacity: number;
+  private readonly maxWavePaths: number;
   private readonly buffers: GpuBufferSet;
   private readonly resources: Record<PlannedBufferName, GPUBuffer>;
+  private readonly kernelPipelines: PathTracerPipelines['kernels'];
+  private readonly resourceMap: PathTracerResourceMap;
   private readonly atlasTexture: GPUTexture;
   private readonly environmentTexture: GPUTexture;
   private readonly lighting: GpuLighting;
   private readonly textureBytes: number;
   private readonly encoderOfWaves: WavefrontEncoder;
   private readonly display: FilmDisplay;
-  private readonly timing: { querySet: GPUQuerySet; resolve: GPUBuffer } | null;
+  private readonly readbacks: FrameReadbackRing;
+  /** Submission phases of renderFrame / renderOnce calls run one at a time, in call order. */
+  private submissions: Promise<unknown> = Promise.resolve();
+  private queuedSubmissions = 0;
   private readonly adaptive: AdaptiveScheduler | null;
   private readonly denoiser: AtrousDenoisePass | null;
   private readonly instanceIds: InstanceIds;
@@ -203,13 +219,14 @@ class WavefrontRenderer extends EventTarget implements WavefrontPathTracingRende
   private deviceLostMessage = '';
 
   constructor(
-    acquired: { device: GPUDevice; ownsDevice: boolean; adapterDescription: string; timestampQueries: boolean },
+    acquired: { device: GPUDevice; ownsDevice: boolean; adapterDescription: string; timestampQueries: boolean; softwareAdapter: boolean },
     config: WavefrontPathTracingComputeConfig,
     scene: NormalizedScene,
     prepared: PreparedScene,
     lighting: GpuLighting,
     pipelines: RendererPipelines,
     plan: Record<PlannedBufferName, PlannedBuffer>,
+    waves: { wavePaths: number; maxWavePaths: number },
   ) {
     super();
     const device = (this.device = acquired.device);
@@ -217,7 +234,8 @@ class WavefrontRenderer extends EventTarget implements WavefrontPathTracingRende
     this.adapter = acquired.adapterDescription;
     this.config = config;
     this.scene = { instanceCount: scene.instances.length, sceneObjectCount: scene.sceneObjects.length, prepared };
-    this.capacity = queueCapacity(config.width, config.height, config.tileSize);
+    this.capacity = waves.wavePaths;
+    this.maxWavePaths = waves.maxWavePaths;
     this.lighting = lighting;
     const b = (this.buffers = new GpuBufferSet(device));
     const S = BufferUsage.STORAGE;
@@ -238,7 +256,7 @@ class WavefrontRenderer extends EventTarget implements WavefrontPathTracingRende
       wave: BufferUsage.UNIFORM | BufferUsage.COPY_DST,
       bounce: BufferUsage.UNIFORM | BufferUsage.COPY_DST,
       displayUniforms: BufferUsage.UNIFORM | BufferUsage.COPY_DST,
-      counters: S | BufferUsage.COPY_SRC | BufferUsage.COPY_DST,
+      queues: S | BufferUsage.COPY_SRC | BufferUsage.COPY_DST,
       film: S | BufferUsage.COPY_SRC | BufferUsage.COPY_DST,
       filmAovs: S | BufferUsage.COPY_SRC | BufferUsage.COPY_DST,
       filmMoments: S | BufferUsage.COPY_SRC | BufferUsage.COPY_DST,
@@ -249,7 +267,6 @@ class WavefrontRenderer extends EventTarget implements WavefrontPathTracingRende
       denoise: BufferUsage.UNIFORM | BufferUsage.COPY_DST,
       denoised: S | BufferUsage.COPY_SRC,
       displayPixels: S | BufferUsage.COPY_SRC,
-      dispatchArgs: S | BufferUsage.INDIRECT,
       timestamps: BufferUsage.QUERY_RESOLVE | BufferUsage.COPY_SRC,
     };
     const resources = {} as Record<PlannedBufferName, GPUBuffer>;
@@ -272,7 +289,9 @@ class WavefrontRenderer extends EventTarget implements WavefrontPathTracingRende
       displayFilm: resources.film,
       displayPixels: resources.displayPixels,
     };
-    this.encoderOfWaves = new WavefrontEncoder(createKernelBindGroups(device, pipelines.kernels, map), resources.dispatchArgs, this.capacity);
+    this.kernelPipelines = pipelines.kernels;
+    this.resourceMap = map;
+    this.encoderOfWaves = new WavefrontEncoder(createKernelBindGroups(device, pipelines.kernels, map), config.width * config.height, gridWorkgroupLimit(acquired.softwareAdapter, device.limits));
     const out = config.output;
     this.display = new FilmDisplay(device, pipelines.resolve, map, out.denoise ? resources.denoised : undefined);
     if (out.denoise?.present === 'denoised') this.display.source = 'denoised';
@@ -283,7 +302,8 @@ class WavefrontRenderer extends EventTarget implements WavefrontPathTracingRende
     device.queue.writeBuffer(resources.bounce, 0, packBounceUniforms(config.maxDepth, this.capacity));
     this.writeFrameUniforms();
     this.writeDisplayUniforms();
-    this.timing = acquired.timestampQueries ? { querySet: device.createQuerySet({ type: 'timestamp', count: 2 }), resolve: resources.timestamps } : null;
+    const slots = config.framesInFlight;
+    this.readbacks = new FrameReadbackRing(device, slots, acquired.timestampQueries ? { querySet: device.createQuerySet({ type: 'timestamp', count: 2 * slots }), resolve: resources.timestamps } : null);
     void device.lost.then((info) => {
       if (this.destroyed) return;
       this.deviceLost = true;
@@ -325,22 +345,38 @@ class WavefrontRenderer extends EventTarget implements WavefrontPathTracingRende
   }
 
   /**
-   * Encodes waves into command buffers of at most maxFramePassesPerSubmission waves each and submits
-   * them; the GPU timestamps bracket the frame (begin at its first pass, end at every batch's last,
-   * so the last write wins). Returns the number of submissions.
+   * Runs a submission phase (a frame's encoding and submits) after every earlier one: renderFrame
+   * and renderOnce calls reach the GPU in call order even when a caller does not await them, and
+   * reads and camera changes see all the work requested before them. Runs `phase` at once (in the
+   * caller's turn) when nothing is queued.
    */
-  private submitWaves(waves: readonly Wave[], firstOfFrame: boolean): number {
+  private afterSubmissions<T>(phase: () => T | Promise<T>): Promise<T> {
+    const run = this.queuedSubmissions === 0 ? new Promise<T>((resolve) => resolve(phase())) : this.submissions.then(phase);
+    this.queuedSubmissions += 1;
+    const settled = run.then(
+      () => undefined,
+      () => undefined,
+    );
+    this.submissions = settled.then(() => {
+      this.queuedSubmissions -= 1;
+    });
+    return run;
+  }
+
+  /**
+   * Encodes waves into command buffers of at most maxFramePassesPerSubmission waves each and submits
+   * them; the GPU timestamps of readback slot `slot` bracket the frame (begin at its first pass, end
+   * at every batch's last, so the last write wins). Returns the number of submissions.
+   */
+  private submitWaves(waves: readonly Wave[], firstOfFrame: boolean, slot: number | null): number {
     const device = this.device;
     const perSubmission = this.config.output.maxFramePassesPerSubmission;
     let submissions = 0;
     for (let first = 0; first < waves.length; first += perSubmission) {
       const batch = waves.slice(first, first + perSubmission);
-      const begin = firstOfFrame && first === 0;
       device.queue.writeBuffer(this.resources.wave, 0, packWaveUniforms(batch));
       const encoder = device.createCommandEncoder({ label: 'wavefront frame' });
-      const timestampWrites: GPUComputePassTimestampWrites | undefined = this.timing
-        ? { querySet: this.timing.querySet, ...(begin ? { beginningOfPassWriteIndex: 0 } : {}), endOfPassWriteIndex: 1 }
-        : undefined;
+      const timestampWrites = slot === null ? undefined : this.readbacks.timestampWrites(slot, firstOfFrame && first === 0);
       const pass = encoder.beginComputePass(timestampWrites ? { timestampWrites } : {});
       this.encoderOfWaves.encode(pass, batch, this.config.maxDepth);
       pass.end();
@@ -350,33 +386,56 @@ class WavefrontRenderer extends EventTarget implements WavefrontPathTracingRende
     return submissions;
   }
 
+  /**
+   * Grows the wave buffers (path records, queues) to hold waves of `paths` paths, up to the
+   * renderer's bound, so a frame of more samples than the renderer was created with still takes
+   * device-sized waves. Work already submitted keeps the old buffers until it completes.
+   */
+  private growQueues(paths: number): void {
+    const wanted = Math.min(paths, this.maxWavePaths);
+    if (wanted <= this.capacity) return;
+    const plan = planBuffers({ width: this.config.width, height: this.config.height, wavePaths: wanted, maxDepth: this.config.maxDepth, aovs: false, vertexStreams: 0, indices: 0, primitiveCount: 0, alphaPrimitiveCount: 0, instanceCount: 0, lightCount: 0, materialCells: 0 });
+    const usage = BufferUsage.STORAGE | BufferUsage.COPY_SRC | BufferUsage.COPY_DST;
+    for (const name of ['paths', 'queues'] as const) {
+      const replacement = this.buffers.replace(this.resources[name], name, plan[name].bytes, usage, 'queue');
+      this.resources[name] = replacement;
+      this.resourceMap[name] = replacement;
+    }
+    this.capacity = wanted;
+    this.encoderOfWaves.rebind(createKernelBindGroups(this.device, this.kernelPipelines, this.resourceMap));
+    this.device.queue.writeBuffer(this.resources.bounce, 0, packBounceUniforms(this.config.maxDepth, this.capacity));
+    this.writeFrameUniforms();
+  }
+
   private emitProgress(progress: WavefrontRenderProgress, listener: ((p: WavefrontRenderProgress) => void) | null): void {
     this.config.output.onProgress?.(progress);
     listener?.(progress);
     this.dispatchEvent(new CustomEvent('progress', { detail: progress }));
   }
 
-  /** Starts a frame: zeroed counters, a fresh dispatch tally, the denoised copy out of date. */
+  /** Starts a frame: zeroed statistics, a fresh dispatch tally, the denoised copy out of date. */
   private beginFrame(): FrameOutcome {
     const tally = new DispatchTally();
     this.encoderOfWaves.tally = tally;
-    this.device.queue.writeBuffer(this.resources.counters, 0, new Uint32Array(queueCounterCount));
+    this.device.queue.writeBuffer(this.resources.queues, 0, new Uint32Array(queueCounterCount));
     this.denoisedFresh = false;
-    return { samplesAdded: 0, waves: 0, submissions: 0, tally, pixelSamples: 0 };
+    return { samplesAdded: 0, waves: 0, wavePaths: this.capacity, submissions: 0, tally, pixelSamples: 0 };
   }
 
   /**
-   * Submits `step` sample passes: tile waves over the image, or list waves over the pixels adaptive
-   * sampling last counted as active, then (adaptive) the convergence test, whose list length comes
-   * back through the returned promise.
+   * Submits `step` sample passes: full-frame waves over pixels x step samples, or list waves over
+   * the pixels adaptive sampling last counted as active, then (adaptive) the convergence test, whose
+   * list length comes back through the returned promise.
    */
-  private submitStep(outcome: FrameOutcome, step: number): Promise<unknown> | null {
-    const { width, height, tileSize } = this.config;
+  private submitStep(outcome: FrameOutcome, step: number, slot: number | null): Promise<unknown> | null {
+    const pixels = this.config.width * this.config.height;
     const adaptive = this.adaptive;
-    const active = adaptive ? adaptive.counts.activePixels : width * height;
-    const waves = adaptive ? planListWaves(active, this.capacity, step) : planWaves(width, height, tileSize, this.samplesAccumulated + outcome.samplesAdded, step);
-    outcome.submissions += this.submitWaves(waves, outcome.samplesAdded === 0);
+    const active = adaptive ? adaptive.counts.activePixels : pixels;
+    this.growQueues(active * step);
+    const waves = adaptive ? planListWaves(active, this.capacity, step) : planFrameWaves(pixels, this.capacity, this.samplesAccumulated + outcome.samplesAdded, step);
+    outcome.submissions += this.submitWaves(waves, outcome.samplesAdded === 0, slot);
     outcome.waves += waves.length;
+    outcome.wavePaths = this.capacity;
     outcome.samplesAdded += step;
     outcome.pixelSamples += step * active;
     if (!adaptive) return null;
@@ -395,15 +454,15 @@ class WavefrontRenderer extends EventTarget implements WavefrontPathTracingRende
   }
 
   /**
-   * Renders a frame's sample passes and waits for them. Without adaptive sampling or a budget: one
-   * group of tile waves. With adaptive sampling: steps of adaptiveStepSamples passes over the active
+   * Submits a frame's sample passes. Without adaptive sampling or a budget: one group of waves,
+   * nothing waited for. With adaptive sampling: steps of adaptiveStepSamples passes over the active
    * list, each followed by the convergence test; each step is sized by the list length of the step
    * before the previous one, so the GPU always has the next step queued while the CPU waits for a
    * count (the waves bound themselves by the GPU's own count; a pixel a stale count leaves out waits
    * a step). With a budget: the guaranteed passes, then one pass at a time while the measured pass
    * time fits (waiting for the GPU between passes).
    */
-  private async renderPasses(frame: ParsedFrameOptions, started: number): Promise<FrameOutcome> {
+  private async renderPasses(frame: ParsedFrameOptions, started: number, slot: number): Promise<FrameOutcome> {
     const outcome = this.beginFrame();
     const adaptive = this.adaptive;
     let pendingCount: Promise<unknown> | null = null;
@@ -413,7 +472,7 @@ class WavefrontRenderer extends EventTarget implements WavefrontPathTracingRende
       let step = frame.ceiling - rendered;
       if (frame.budgetMs !== null) step = rendered < frame.minimum ? frame.minimum - rendered : 1;
       if (adaptive) step = Math.min(step, adaptiveStepSamples);
-      const counted = this.submitStep(outcome, step);
+      const counted = this.submitStep(outcome, step, slot);
       const more = outcome.samplesAdded < frame.ceiling;
       if (counted) {
         if (pendingCount) await pendingCount;
@@ -432,7 +491,7 @@ class WavefrontRenderer extends EventTarget implements WavefrontPathTracingRende
     return outcome;
   }
 
-  private progressOf(frame: ParsedFrameOptions, outcome: FrameOutcome, elapsedMs: number, done: boolean): WavefrontRenderProgress {
+  private progressOf(frame: ParsedFrameOptions, outcome: FrameOutcome, elapsedMs: number, done: boolean, frameNumber = this.frameCount + (done ? 0 : 1), accumulated = this.samplesAccumulated + (done ? 0 : outcome.samplesAdded)): WavefrontRenderProgress {
     const pixels = this.config.width * this.config.height;
     const counts = this.adaptive?.counts ?? null;
     let remaining = 0;
@@ -446,10 +505,10 @@ class WavefrontRenderer extends EventTarget implements WavefrontPathTracingRende
       if (frame.budgetMs !== null) remaining = Math.min(remaining, Math.max(0, frame.budgetMs - elapsedMs));
     }
     return {
-      frame: this.frameCount + (done ? 0 : 1),
+      frame: frameNumber,
       samplesThisFrame: outcome.samplesAdded,
       targetSamplesThisFrame: frame.ceiling,
-      samplesAccumulated: this.samplesAccumulated + (done ? 0 : outcome.samplesAdded),
+      samplesAccumulated: accumulated,
       activePixels: counts ? counts.activePixels : pixels,
       totalPixels: pixels,
       elapsedMs,
@@ -468,14 +527,14 @@ class WavefrontRenderer extends EventTarget implements WavefrontPathTracingRende
     return true;
   }
 
-  /** The frame's closing submission: denoising when the canvas shows it, the stats copy, the present. */
-  private finishFrame(tally: DispatchTally, readStats: boolean): { readback: ReturnType<typeof encodeFrameReadback> | null; denoised: boolean } {
+  /** The frame's closing submission: denoising when the canvas shows it, the statistics copy into `slot`, the present. */
+  private finishFrame(tally: DispatchTally, slot: number | null): boolean {
     const encoder = this.device.createCommandEncoder({ label: 'frame end' });
     const denoised = this.display.hasCanvas && this.display.source === 'denoised' ? this.encodeDenoise(encoder, tally) : false;
-    const readback = readStats ? encodeFrameReadback(this.device, encoder, this.resources.counters, this.timing) : null;
+    if (slot !== null) this.readbacks.encodeCopy(encoder, slot, this.resources.queues);
     this.display.encodePresent(encoder);
     this.device.queue.submit([encoder.finish()]);
-    return { readback, denoised };
+    return denoised;
   }
 
   private outputState(): WavefrontOutputState {
@@ -493,43 +552,53 @@ class WavefrontRenderer extends EventTarget implements WavefrontPathTracingRende
     };
   }
 
+  /**
+   * Submits the frame as soon as fewer than framesInFlight frames await their statistics, and
+   * resolves to its statistics once they come back (through the readback ring). A caller that
+   * requests the next frame before awaiting this one keeps the GPU fed: nothing between two
+   * submissions waits for the GPU.
+   */
   async renderFrame(options?: WavefrontRenderFrameOptions): Promise<WavefrontFrameStats> {
     this.assertUsable();
     const frame = parseRenderFrameOptions(options, this.config.samplesPerPixel);
     const started = performance.now();
-    const tiles = tileCount(this.config.width, this.config.height, this.config.tileSize);
-    let outcome: FrameOutcome;
-    let result: { counters: Uint32Array; gpuTimeMs: number | null };
-    let denoised: boolean;
+    let submitted: { outcome: FrameOutcome; denoised: boolean; frameNumber: number; samplesAccumulated: number; memory: WavefrontMemoryStats; readout: Promise<FrameReadout> };
+    let readout: FrameReadout;
     try {
-      outcome = await this.renderPasses(frame, started);
-      const end = this.finishFrame(outcome.tally, true);
-      denoised = end.denoised;
-      outcome.submissions += 1;
-      result = await readFrameReadback(end.readback!);
+      submitted = await this.afterSubmissions(async () => {
+        const slot = await this.readbacks.acquire();
+        this.assertUsable();
+        const outcome = await this.renderPasses(frame, started, slot);
+        const denoised = this.finishFrame(outcome.tally, slot);
+        outcome.submissions += 1;
+        return { outcome, denoised, frameNumber: this.frameCount, samplesAccumulated: this.samplesAccumulated, memory: this.memory(), readout: this.readbacks.read(slot) };
+      });
+      readout = await submitted.readout;
     } catch (error) {
       this.assertUsable();
       throw error;
     }
+    const { outcome } = submitted;
     const wallTimeMs = performance.now() - started;
     const pixels = this.config.width * this.config.height;
     // The camera-ray counter is exact where the CPU's step accounting used a stale list length.
-    const cameraRays = result.counters[queueCounterSlots.cameraRays]!;
+    const cameraRays = readout.counters[queueCounterSlots.cameraRays]!;
     this.pixelSamplesAccumulated += cameraRays - outcome.pixelSamples;
     outcome.pixelSamples = cameraRays;
     const settings = this.config.output.adaptive;
     const counts = this.adaptive?.counts;
-    const stats = frameStatsFromCounters(result.counters, {
-      frame: this.frameCount,
+    const stats = frameStatsFromCounters(readout.counters, {
+      frame: submitted.frameNumber,
       samplesAdded: outcome.samplesAdded,
-      samplesAccumulated: this.samplesAccumulated,
+      samplesAccumulated: submitted.samplesAccumulated,
       samplesPerPixel: frame.ceiling,
       frameTimeBudgetMs: frame.budgetMs,
-      gpuTimeMs: result.gpuTimeMs,
+      gpuTimeMs: readout.gpuTimeMs,
       wallTimeMs,
-      memory: this.memory(),
-      tiles,
+      memory: submitted.memory,
+      tiles: Math.ceil(pixels / outcome.wavePaths),
       waves: outcome.waves,
+      wavePaths: outcome.wavePaths,
       submissions: outcome.submissions,
       deviceLost: this.deviceLost,
       gpuParallelism: outcome.tally.report(this.device.limits, rendererWavefrontComputeWorkgroupSize),
@@ -545,10 +614,10 @@ class WavefrontRenderer extends EventTarget implements WavefrontPathTracingRende
             estimatedRemainingPixelSamples: counts.estimatedRemainingPixelSamples,
           }
           : null,
-      denoised,
+      denoised: submitted.denoised,
       output: this.outputState(),
     });
-    this.emitProgress(this.progressOf(frame, outcome, wallTimeMs, true), frame.onProgress);
+    this.emitProgress(this.progressOf(frame, outcome, wallTimeMs, true, submitted.frameNumber, submitted.samplesAccumulated), frame.onProgress);
     return stats;
   }
 
@@ -556,19 +625,27 @@ class WavefrontRenderer extends EventTarget implements WavefrontPathTracingRende
     this.assertUsable();
     const frame = parseRenderFrameOptions(options, this.config.samplesPerPixel);
     if (frame.budgetMs !== null) throw new GpuRendererError('INVALID_OPTION', 'a frame time budget needs renderFrame, which waits for the GPU', { field: 'frameTimeBudgetMs' });
-    const outcome = this.beginFrame();
-    // One step of all the passes; adaptive sampling's count lands when the GPU gets there and sizes
-    // a later frame (nothing here waits for it).
-    if (!(this.adaptive && this.adaptive.counts.activePixels === 0)) void this.submitStep(outcome, frame.ceiling)?.catch(() => undefined);
-    this.endFrame(outcome);
-    this.finishFrame(outcome.tally, false);
+    void this.afterSubmissions(() => {
+      if (this.destroyed || this.deviceLost) return;
+      const outcome = this.beginFrame();
+      // One step of all the passes; adaptive sampling's count lands when the GPU gets there and sizes
+      // a later frame (nothing here waits for it).
+      if (!(this.adaptive && this.adaptive.counts.activePixels === 0)) void this.submitStep(outcome, frame.ceiling, null)?.catch(() => undefined);
+      this.endFrame(outcome);
+      this.finishFrame(outcome.tally, null);
+    }).catch(() => undefined);
   }
 
   updateCamera(camera: WavefrontCameraInput): void {
     this.assertUsable();
-    this.config = { ...this.config, camera: normalizeWavefrontCamera(camera) };
-    this.writeFrameUniforms();
-    this.resetAccumulation();
+    const normalized = normalizeWavefrontCamera(camera);
+    // Frames requested before the change render with the camera they were requested with.
+    void this.afterSubmissions(() => {
+      if (this.destroyed) return;
+      this.config = { ...this.config, camera: normalized };
+      this.writeFrameUniforms();
+      this.resetAccumulation();
+    }).catch(() => undefined);
   }
 
   private resetAccumulation(): void {
@@ -585,14 +662,22 @@ class WavefrontRenderer extends EventTarget implements WavefrontPathTracingRende
     this.frameCount = 0;
   }
 
-  async readRadiance(): Promise<WavefrontRadianceImage> {
+  /** Waits until every frame requested so far has been submitted, so a read sees all of them. */
+  private async submittedWork(): Promise<void> {
     this.assertUsable();
+    await this.afterSubmissions(() => undefined);
+    this.assertUsable();
+  }
+
+  async readRadiance(): Promise<WavefrontRadianceImage> {
+    await this.submittedWork();
     return readMeanRadiance(this.device, this.resources.film, this.config.width, this.config.height);
   }
 
   async readDenoised(): Promise<WavefrontRadianceImage> {
     this.assertUsable();
     if (!this.denoiser) throw new GpuRendererError('INVALID_STATE', 'the denoiser is off: create the renderer with denoise: true', { field: 'denoise' });
+    await this.submittedWork();
     const encoder = this.device.createCommandEncoder({ label: 'denoise' });
     if (this.encodeDenoise(encoder, null)) this.device.queue.submit([encoder.finish()]);
     return readRgbaImage(this.device, this.resources.denoised, this.config.width, this.config.height);
@@ -602,13 +687,14 @@ class WavefrontRenderer extends EventTarget implements WavefrontPathTracingRende
     this.assertUsable();
     if (!isWavefrontAovName(name)) throw new GpuRendererError('INVALID_OPTION', `unknown AOV ${JSON.stringify(name)} (${wavefrontAovNames.join(', ')})`, { field: 'name' });
     if (name !== 'sampleCount' && !this.config.aovs) throw new GpuRendererError('INVALID_STATE', 'AOVs were not enabled: create the renderer with aovs: true', { field: 'aovs' });
+    await this.submittedWork();
     const r = this.resources;
     const adaptive = this.adaptive ? { error: r.adaptiveError, pixels: r.adaptivePixels } : null;
     return readAovImage(this.device, { film: r.film, aovs: r.filmAovs, moments: r.filmMoments, ids: r.filmIds, adaptive }, name, this.config.width, this.config.height, this.instanceIds);
   }
 
   async readPixels(): Promise<WavefrontPixelImage> {
-    this.assertUsable();
+    await this.submittedWork();
     const { width, height } = this.config;
     const encoder = this.device.createCommandEncoder();
     if (this.display.source === 'denoised') this.encodeDenoise(encoder, null);
@@ -635,6 +721,9 @@ class WavefrontRenderer extends EventTarget implements WavefrontPathTracingRende
       maxDepth: this.config.maxDepth,
       samplesPerPixel: this.config.samplesPerPixel,
       tileSize: this.config.tileSize,
+      wavePaths: this.capacity,
+      maxWavePaths: this.maxWavePaths,
+      framesInFlight: this.config.framesInFlight,
       triangleCount: p.triangleCount,
       bvhNodeCount: p.bvh.nodeCount,
       bvhDepth: p.bvh.depth,
@@ -659,7 +748,7 @@ class WavefrontRenderer extends EventTarget implements WavefrontPathTracingRende
     if (this.destroyed) return;
     this.destroyed = true;
     this.display.detach();
-    this.timing?.querySet.destroy();
+    this.readbacks.destroy();
     this.buffers.destroy();
     this.atlasTexture.destroy();
     this.environmentTexture.destroy();

@@ -31,8 +31,18 @@ export interface WavefrontPathTracingOptions extends Omit<WavefrontSceneDescript
   maxDepth?: number;
   /** Samples per pixel added by each renderFrame call; default 1. */
   samplesPerPixel?: number;
-  /** Edge of the square tile a wave covers; the queues hold tileSize^2 paths. Default 256. */
+  /**
+   * Bounds the paths of one wave to tileSize^2 (8..1024), and with it the queue memory. By default a
+   * wave holds as many paths as the frame has (pixels x samples) up to what the device binds and
+   * 2^21 paths (wave-capacity.ts).
+   */
   tileSize?: number;
+  /**
+   * Frames renderFrame may have submitted before their statistics come back (1..4, default 2): a
+   * call that does not await the previous one's result submits at once unless this many frames are
+   * still in flight. 1 submits a frame only after the previous frame's statistics were read.
+   */
+  framesInFlight?: number;
   /** Sampler seed; the same seed gives the same image. Default 0. */
   seed?: number;
   /** Tone mapping for readPixels and the canvas; default 'neutral' (Khronos PBR Neutral). */
@@ -78,7 +88,7 @@ export interface WavefrontMemoryStats {
   sceneBytes: number;
   /** The material texture atlas (included in sceneBytes). */
   textureBytes: number;
-  /** Tile-sized queues: paths, rays, hits, surfaces, shadow rays, samples, counters. */
+  /** Wave-sized buffers: the path records and the queues (with the statistics). */
   queueBytes: number;
   /** Full-frame float32 accumulation (and AOVs) plus the display buffer. */
   frameBytes: number;
@@ -114,8 +124,11 @@ export interface WavefrontFrameStats {
   /** Wall-clock time of renderFrame in ms. */
   wallTimeMs: number;
   memory: WavefrontMemoryStats;
+  /** Waves one sample of every pixel takes (ceil(pixels / wavePaths)). */
   tiles: number;
   waves: number;
+  /** Paths per wave: the queue capacity this frame ran with. */
+  wavePaths: number;
   /** Adaptive sampling's state after the frame; null when it is off. */
   adaptive: WavefrontAdaptiveFrameStats | null;
   /** Whether the denoiser ran in this frame (it runs when the canvas shows the denoised image, else on read). */
@@ -154,7 +167,13 @@ export interface WavefrontRendererSnapshot extends WavefrontOutputState {
   samplesAccumulated: number;
   maxDepth: number;
   samplesPerPixel: number;
-  tileSize: number;
+  /** The explicit wave bound (tileSize^2 paths), or null when waves are sized to the device. */
+  tileSize: number | null;
+  /** Paths per wave the queues now hold (they grow up to the bound as frames need). */
+  wavePaths: number;
+  /** Most paths a wave may hold on this device (or tileSize^2). */
+  maxWavePaths: number;
+  framesInFlight: number;
   triangleCount: number;
   bvhNodeCount: number;
   lightCount: number;

@@ -1,9 +1,9 @@
-import { CAMERA_ORTHOGRAPHIC, CAMERA_PERSPECTIVE, dynamicUniformStride, INDEX_NONE, PRESENTATION_LINEAR, PRESENTATION_TONEMAPPED, queueCounterSlots, TONE_MAPPING_ACES, TONE_MAPPING_AGX, TONE_MAPPING_LINEAR, TONE_MAPPING_NEUTRAL } from '../gpu-layout/constants.ts';
+import { CAMERA_ORTHOGRAPHIC, CAMERA_PERSPECTIVE, dynamicUniformStride, PRESENTATION_LINEAR, PRESENTATION_TONEMAPPED, queueLayoutWords, queueLengthWord, TONE_MAPPING_ACES, TONE_MAPPING_AGX, TONE_MAPPING_LINEAR, TONE_MAPPING_NEUTRAL } from '../gpu-layout/constants.ts';
 import { bounceUniformsLayout, frameUniformsLayout, resolveUniformsLayout, waveUniformsLayout } from '../gpu-layout/records.ts';
 import { writeStruct } from '../gpu-layout/struct-layout.ts';
 import type { WavefrontToneMapping } from '../scene/types.ts';
 import type { WavefrontPathTracingComputeConfig } from './config.ts';
-import type { Wave } from './tiling.ts';
+import type { Wave } from './waves.ts';
 
 export const toneMappingIds: Record<WavefrontToneMapping, number> = { neutral: TONE_MAPPING_NEUTRAL, aces: TONE_MAPPING_ACES, linear: TONE_MAPPING_LINEAR, agx: TONE_MAPPING_AGX };
 
@@ -45,17 +45,24 @@ export function packFrameUniforms(c: WavefrontPathTracingComputeConfig, s: Frame
   return data;
 }
 
-/** One BounceUniforms record per depth, ping-ponging the two halves of the ray buffer. */
+/**
+ * One BounceUniforms record per depth: bounce d traces and shades ray queue d % 2 (whose length word
+ * is d's), fills ray queue (d + 1) % 2, traces the shadow rays bounce d - 1 queued and queues its
+ * own into the shadow queue (traced by bounce d + 1, so one shadow queue serves every bounce).
+ */
 export function packBounceUniforms(maxDepth: number, capacity: number): ArrayBuffer {
   const data = new ArrayBuffer((maxDepth + 1) * dynamicUniformStride);
+  const rayQueue = (d: number): number => queueLayoutWords.entriesBase + (d % 2) * capacity;
   for (let d = 0; d <= maxDepth; d++) {
-    const even = d % 2 === 0;
     writeStruct(bounceUniformsLayout, new DataView(data, d * dynamicUniformStride, bounceUniformsLayout.size), 0, {
       depth: d,
-      inCounter: even ? queueCounterSlots.rayCount0 : queueCounterSlots.rayCount1,
-      outCounter: even ? queueCounterSlots.rayCount1 : queueCounterSlots.rayCount0,
-      inBase: even ? 0 : capacity,
-      outBase: even ? capacity : 0,
+      rayCount: queueLengthWord(d, 0),
+      rayQueue: rayQueue(d),
+      shadowCount: queueLengthWord(d - 1, 1),
+      shadowQueue: queueLayoutWords.entriesBase + 2 * capacity,
+      nextRayCount: queueLengthWord(d + 1, 0),
+      nextRayQueue: rayQueue(d + 1),
+      nextShadowCount: queueLengthWord(d, 1),
     });
   }
   return data;
@@ -66,10 +73,11 @@ export function packWaveUniforms(waves: readonly Wave[]): ArrayBuffer {
   const data = new ArrayBuffer(Math.max(1, waves.length) * dynamicUniformStride);
   waves.forEach((w, i) => {
     writeStruct(waveUniformsLayout, new DataView(data, i * dynamicUniformStride, waveUniformsLayout.size), 0, {
-      tileOrigin: w.tileOrigin,
-      tileSize: w.tileSize,
-      sampleIndex: w.sampleIndex,
-      activeOffset: w.activeOffset ?? INDEX_NONE,
+      firstPath: w.firstPath,
+      firstSample: w.firstSample,
+      pathCount: w.pathCount,
+      passes: w.passes,
+      list: w.list ? 1 : 0,
     });
   });
   return data;

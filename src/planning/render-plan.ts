@@ -8,8 +8,9 @@ import {
   primitiveLayout,
   rayWorkItemLayout,
   rendererWavefrontAccumulationTexelBytes,
+  pathHitLayout,
+  pathRecordLayout,
   sampleRecordLayout,
-  shadingWorkItemLayout,
   shadowRayLayout,
   surfaceRecordLayout,
 } from '../gpu-layout/records.ts';
@@ -94,17 +95,19 @@ export interface RayTracingRenderPlan {
   };
   readonly wavefront: {
     readonly queueLayout: {
-      readonly strategy: 'tile-bounded-ping-pong';
+      /**
+       * Each path keeps one record (state, ray, hit, shadow ray, sample) at its slot; the queues
+       * hold slots. Two ray queues alternate as input and output by bounce depth.
+       */
+      readonly strategy: 'path-records-slot-queues';
       readonly queueClass: string;
       readonly tileSize: number;
       /** Paths per wave and entries per queue: tileSize^2, independent of the output resolution. */
       readonly capacity: number;
-      /** Two ray queues alternate as input and output by bounce depth. */
       readonly rayQueues: 2;
+      /** Bytes of one path's whole record (PathRecord). */
       readonly pathRecordBytes: number;
       readonly rayRecordBytes: number;
-      /** Intersection appends hits at the front and escaped rays at the back of one shading queue. */
-      readonly shadingQueue: 'hits-front-escaped-back';
       readonly hitRecordBytes: number;
       readonly surfaceRecordBytes: number;
       readonly shadowQueueCapacity: number;
@@ -118,11 +121,13 @@ export interface RayTracingRenderPlan {
       readonly path: RecordContract;
       /** A ray waiting for closest-hit intersection. */
       readonly ray: RecordContract;
-      /** What intersection hands to shading: direction, barycentrics, instance and triangle. */
+      /** What intersection hands to shading: distance, barycentrics, primitive. */
       readonly hit: RecordContract;
       readonly shadowRay: RecordContract;
-      /** Material evaluation's compact per-hit BSDF parameters. */
+      /** Material evaluation's compact per-hit BSDF parameters (in registers between the fused stages). */
       readonly surface: RecordContract;
+      /** Everything the wave keeps of a path, at its slot. */
+      readonly record: RecordContract;
       readonly material: RecordContract;
       /** A path sample's radiance and first-hit AOVs. */
       readonly sample: RecordContract;
@@ -206,15 +211,14 @@ export function createRayTracingRenderPlan(options: RayTracingRenderPlanOptions)
     },
     wavefront: {
       queueLayout: {
-        strategy: 'tile-bounded-ping-pong',
+        strategy: 'path-records-slot-queues',
         queueClass: rendererWorkerQueueClass,
         tileSize,
         capacity,
         rayQueues: 2,
-        pathRecordBytes: pathStateLayout.size,
+        pathRecordBytes: pathRecordLayout.size,
         rayRecordBytes: rayWorkItemLayout.size,
-        shadingQueue: 'hits-front-escaped-back',
-        hitRecordBytes: shadingWorkItemLayout.size,
+        hitRecordBytes: pathHitLayout.size,
         surfaceRecordBytes: surfaceRecordLayout.size,
         // At most one shadow ray per path per bounce.
         shadowQueueCapacity: capacity,
@@ -227,9 +231,10 @@ export function createRayTracingRenderPlan(options: RayTracingRenderPlanOptions)
       contracts: {
         path: contract(pathStateLayout),
         ray: contract(rayWorkItemLayout),
-        hit: contract(shadingWorkItemLayout),
+        hit: contract(pathHitLayout),
         shadowRay: contract(shadowRayLayout),
         surface: contract(surfaceRecordLayout),
+        record: contract(pathRecordLayout),
         material: contract(materialCoreLayout),
         sample: contract(sampleRecordLayout),
         medium: { name: 'Medium', version: pathStateLayout.version, layout: pathStateLayout, field: fieldOf(pathStateLayout, 'media'), stackLimit: mediumStackLimit },

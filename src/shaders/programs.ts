@@ -5,7 +5,7 @@
  * programs.generated.ts, which the runtime reads.
  */
 export interface ProgramSpec {
-  /** Root module, e.g. `package::pathtracer::kernels::intersect`. */
+  /** Root module, e.g. `package::pathtracer::kernels::trace`. */
   readonly module: string;
   /** Which binding table the program's bindings come from. */
   readonly bindings: 'pathTracer' | 'display';
@@ -13,11 +13,8 @@ export interface ProgramSpec {
 
 export const programSpecs = {
   camera: { module: 'package::pathtracer::kernels::camera', bindings: 'pathTracer' },
-  prepare: { module: 'package::pathtracer::kernels::prepare', bindings: 'pathTracer' },
-  intersect: { module: 'package::pathtracer::kernels::intersect', bindings: 'pathTracer' },
-  evaluateMaterials: { module: 'package::pathtracer::kernels::evaluate_materials', bindings: 'pathTracer' },
-  scatter: { module: 'package::pathtracer::kernels::scatter', bindings: 'pathTracer' },
-  shadow: { module: 'package::pathtracer::kernels::shadow', bindings: 'pathTracer' },
+  trace: { module: 'package::pathtracer::kernels::trace', bindings: 'pathTracer' },
+  shade: { module: 'package::pathtracer::kernels::shade', bindings: 'pathTracer' },
   accumulate: { module: 'package::pathtracer::kernels::accumulate', bindings: 'pathTracer' },
   adaptiveSampling: { module: 'package::pathtracer::adaptive_sampling', bindings: 'pathTracer' },
   denoiseInput: { module: 'package::pathtracer::denoise_input', bindings: 'pathTracer' },

@@ -1,17 +1,23 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { wavefrontRecordLayouts } from '../../src/gpu-layout/records.ts';
-import { writeStruct, readStruct, allocateStructArray, type StructLayout } from '../../src/gpu-layout/struct-layout.ts';
+import { writeStruct, readStruct, allocateStructArray, leafFields, type StructLayout, type StructValues } from '../../src/gpu-layout/struct-layout.ts';
 import { testDevice, uploadBuffer, readBuffer } from '../helpers/gpu.ts';
 import { runTestProgram } from '../helpers/wgsl.ts';
 import { BufferUsage } from '../../src/gpu/webgpu-constants.ts';
 
-// Distinct, exactly representable values per component so any offset mistake shows.
-function sampleValues(layout: StructLayout, record: number): Record<string, number[]> {
-  const values: Record<string, number[]> = {};
-  layout.fields.forEach((f, i) => {
+// Distinct, exactly representable values per component so any offset mistake shows (nested
+// structs take nested values; `i` numbers the leaf fields).
+function sampleValues(layout: StructLayout, record: number, counter = { i: 0 }): StructValues {
+  const values: StructValues = {};
+  for (const f of layout.fields) {
+    if (f.struct) {
+      values[f.name] = sampleValues(f.struct, record, counter);
+      continue;
+    }
+    const i = counter.i++;
     values[f.name] = Array.from({ length: f.components }, (_, c) => (f.scalar === 'f32' ? 0.5 + record * 100 + i * 4 + c : record * 1000 + i * 4 + c + 1));
-  });
+  }
   return values;
 }
 
@@ -22,8 +28,9 @@ test('every record layout packed in TypeScript reads back field by field in WGSL
     const data = allocateStructArray(layout, count);
     const view = new DataView(data);
     for (let r = 0; r < count; r++) writeStruct(layout, view, r, sampleValues(layout, r));
-    const wordsPerRecord = layout.fields.reduce((n, f) => n + f.components, 0);
-    const body = layout.fields
+    const leaves = leafFields(layout);
+    const wordsPerRecord = leaves.reduce((n, f) => n + f.components, 0);
+    const body = leaves
       .flatMap((f) =>
         Array.from({ length: f.components }, (_, c) => {
           const access = f.components === 1 ? `src[r].${f.name}` : `src[r].${f.name}[${c}]`;
@@ -46,7 +53,7 @@ ${body}
     for (let r = 0; r < count; r++) {
       const expected = readStruct(layout, view, r);
       let w = r * wordsPerRecord;
-      for (const f of layout.fields) {
+      for (const f of leaves) {
         const comps = Array.isArray(expected[f.name]) ? (expected[f.name] as number[]) : [expected[f.name] as number];
         for (const value of comps) {
           const got = f.scalar === 'f32' ? words.getFloat32(w * 4, true) : words.getUint32(w * 4, true);

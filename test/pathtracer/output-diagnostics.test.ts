@@ -10,8 +10,8 @@ import { transportExperimentNames } from '../../src/pathtracer/feature-flags.ts'
 import { encodeRadianceToRgba8 } from '../../src/post/tone-mapping.ts';
 import { GpuRendererError } from '../../src/errors/gpu-renderer-error.ts';
 import { pathTracerBindings } from '../../src/gpu-layout/bindings.ts';
-import { INDEX_NONE, LUMINANCE_FRACTION_BITS, queueCounterCount, queueCounterSlots } from '../../src/gpu-layout/constants.ts';
-import { pathStateLayout, sampleRecordLayout, waveUniformsLayout } from '../../src/gpu-layout/records.ts';
+import { LUMINANCE_FRACTION_BITS, queueBufferWords, queueCounterSlots } from '../../src/gpu-layout/constants.ts';
+import { frameUniformsLayout, pathRecordLayout, waveUniformsLayout } from '../../src/gpu-layout/records.ts';
 import { allocateStructArray, writeStruct } from '../../src/gpu-layout/struct-layout.ts';
 import { BufferUsage } from '../../src/gpu/webgpu-constants.ts';
 import { generatedPrograms } from '../../src/shaders/programs.generated.ts';
@@ -86,7 +86,7 @@ test('gpuParallelism and transportGuardrails follow the wave plan; the submissio
   const b = await cornellRenderer(16, { seed: 2, maxDepth });
   try {
     const s = await a.renderFrame({ samplesPerPixel: 2 });
-    const waves = 4 * 2; // 16x16 in 8x8 tiles, 2 samples
+    const waves = (256 * 2) / 64; // 256 pixels x 2 samples in waves of tileSize^2 = 64 paths
     assert.equal(s.waves, waves);
     assert.equal(s.transportGuardrails.jobsPerFrame, waves);
     // ceil(8 / 3) wave submissions and the closing one (statistics copy, presentation).
@@ -97,11 +97,12 @@ test('gpuParallelism and transportGuardrails follow the wave plan; the submissio
     assert.equal(s.transportGuardrails.trackedMemoryBytes, s.memory.totalBytes);
     assert.ok(s.transportGuardrails.jobsPerSecond > 0);
     const g = s.gpuParallelism;
-    // Per wave: camera, one prepare per bounce (0..maxDepth) and accumulate are direct; intersect,
-    // evaluate and scatter per bounce and shadow below maxDepth are indirect.
-    assert.equal(g.directDispatches, waves * (maxDepth + 3));
-    assert.equal(g.indirectDispatches, waves * (3 * (maxDepth + 1) + maxDepth));
-    assert.equal(g.largestDirectWorkgroupsPerDispatch, 1, '64 paths per 8x8 wave: one workgroup');
+    // Per wave: camera, per bounce (0..maxDepth) one traversal and one shading dispatch, and the
+    // accumulation; all direct (the per-bounce kernels loop over their GPU-side queue lengths).
+    assert.equal(g.directDispatches, waves * (2 * (maxDepth + 1) + 2));
+    assert.equal(g.indirectDispatches, 0);
+    assert.equal(s.wavePaths, 64);
+    assert.equal(g.largestDirectWorkgroupsPerDispatch, 2, '64 paths per wave: a traversal grid covers 64 rays and 64 shadow rays');
     assert.equal(g.physicalCoreCount, null);
     assert.ok(g.adapterLimits.maxComputeInvocationsPerWorkgroup >= 64 && g.workgroupSize === 64);
     assert.equal(s.maxFramePassesPerSubmission, 3);
@@ -192,25 +193,28 @@ test('invalid contributions are dropped and counted, and each sample that lost o
   ];
   const flat = schedule.flatMap((list, slot) => list.map((v) => [...v, slot]));
   const inputs = uploadBuffer(device, new Float32Array(flat.flat()));
-  const samples = uploadBuffer(device, new ArrayBuffer(slots * sampleRecordLayout.size));
-  const counters = uploadBuffer(device, new Uint32Array(queueCounterCount));
+  // One 8-path full-frame wave of an 8x1 image: path i at pixel i, sample 0.
+  const records = allocateStructArray(pathRecordLayout, slots);
+  for (let i = 0; i < slots; i++) writeStruct(pathRecordLayout, new DataView(records), i, { state: { pixel: i, sampleIndex: 0 } });
+  const paths = uploadBuffer(device, records);
+  const queues = uploadBuffer(device, new Uint32Array(queueBufferWords(slots)));
   await runTestProgram(device, {
     source: `import package::pathtracer::radiance::commit_radiance;
 @group(0) @binding(0) var<storage, read> inputs: array<vec4f>;
 @compute @workgroup_size(1) fn main() {
   for (var i = 0u; i < arrayLength(&inputs); i++) { commit_radiance(u32(inputs[i].w), inputs[i].xyz); }
 }`,
-    resources: { inputs, samples, counters },
+    resources: { inputs, paths, queues },
     workgroups: 1,
   });
-  // The shipped accumulation kernel over one 8-path tile wave (path i at pixel i, sample 0).
-  const paths = allocateStructArray(pathStateLayout, slots);
-  for (let i = 0; i < slots; i++) writeStruct(pathStateLayout, new DataView(paths), i, { pixel: i, sampleIndex: 0 });
+  // The shipped accumulation kernel over that wave.
   const wave = new ArrayBuffer(waveUniformsLayout.size);
-  writeStruct(waveUniformsLayout, new DataView(wave), 0, { tileSize: [slots, 1], activeOffset: INDEX_NONE });
+  writeStruct(waveUniformsLayout, new DataView(wave), 0, { firstPath: 0, firstSample: 0, pathCount: slots, list: 0 });
+  const frame = new ArrayBuffer(frameUniformsLayout.size);
+  writeStruct(frameUniformsLayout, new DataView(frame), 0, { imageSize: [slots, 1] });
   const film = uploadBuffer(device, new Float32Array(slots * 4));
   const resources: Record<string, GPUBuffer> = {
-    paths: uploadBuffer(device, paths), samples, counters, film,
+    paths, queues, film, frame: uploadBuffer(device, frame, BufferUsage.UNIFORM),
     filmAovs: uploadBuffer(device, new Float32Array(slots * 12)), filmMoments: uploadBuffer(device, new Float32Array(slots * 8)),
     filmIds: uploadBuffer(device, new Uint32Array(slots)), adaptivePixels: uploadBuffer(device, new Uint32Array(8)),
     wave: uploadBuffer(device, wave, BufferUsage.UNIFORM),
@@ -221,14 +225,17 @@ test('invalid contributions are dropped and counted, and each sample that lost o
   const encoder = device.createCommandEncoder();
   const pass = encoder.beginComputePass();
   pass.setPipeline(pipeline);
-  pass.setBindGroup(3, device.createBindGroup({
-    layout: pipeline.getBindGroupLayout(3),
-    entries: program.bindings.map((name) => ({ binding: pathTracerBindings[name as keyof typeof pathTracerBindings].binding, resource: { buffer: resources[name]! } })),
-  }));
+  const spec = (name: string) => pathTracerBindings[name as keyof typeof pathTracerBindings];
+  for (const group of new Set(program.bindings.map((name) => spec(name).group))) {
+    pass.setBindGroup(group, device.createBindGroup({
+      layout: pipeline.getBindGroupLayout(group),
+      entries: program.bindings.filter((name) => spec(name).group === group).map((name) => ({ binding: spec(name).binding, resource: { buffer: resources[name]! } })),
+    }));
+  }
   pass.dispatchWorkgroups(1);
   pass.end();
   device.queue.submit([encoder.finish()]);
-  const c = new Uint32Array(await readBuffer(device, counters));
+  const c = new Uint32Array(await readBuffer(device, queues));
   const f = new Float32Array(await readBuffer(device, film));
   assert.equal(c[queueCounterSlots.invalidSamples], 5, 'contributions dropped');
   assert.equal(c[queueCounterSlots.invalidPathSamples], 4, 'samples that lost a contribution');

@@ -8,7 +8,8 @@ import {
   rayWorkItemLayout,
   rendererWavefrontAccumulationTexelBytes,
   sampleRecordLayout,
-  shadingWorkItemLayout,
+  pathHitLayout,
+  pathRecordLayout,
   surfaceRecordLayout,
   wavefrontRecordLayouts,
 } from '../../src/gpu-layout/records.ts';
@@ -55,7 +56,8 @@ test('wavefront contracts are the very record layouts of records.ts; queue capac
   const c = plan.wavefront.contracts;
   assert.equal(c.path.layout, pathStateLayout);
   assert.equal(c.ray.layout, rayWorkItemLayout);
-  assert.equal(c.hit.layout, shadingWorkItemLayout);
+  assert.equal(c.hit.layout, pathHitLayout);
+  assert.equal(c.record.layout, pathRecordLayout);
   assert.equal(c.surface.layout, surfaceRecordLayout);
   assert.equal(c.material.layout, materialCoreLayout);
   assert.equal(c.sample.layout, sampleRecordLayout);
@@ -63,16 +65,16 @@ test('wavefront contracts are the very record layouts of records.ts; queue capac
   assert.equal(c.medium.stackLimit, 4);
   assert.equal(c.accumulation.bytes, rendererWavefrontAccumulationTexelBytes);
   assert.equal(c.accumulation.bytes, 16);
-  for (const contract of [c.path, c.ray, c.hit, c.surface, c.material, c.shadowRay, c.sample]) {
+  for (const contract of [c.path, c.ray, c.hit, c.surface, c.material, c.shadowRay, c.sample, c.record]) {
     assert.equal(contract.bytes, contract.layout.size);
     assert.equal(contract.version, contract.layout.version);
     assert.equal(wavefrontRecordLayouts[contract.name as keyof typeof wavefrontRecordLayouts], contract.layout);
   }
   const q = plan.wavefront.queueLayout;
-  assert.equal(q.strategy, 'tile-bounded-ping-pong');
+  assert.equal(q.strategy, 'path-records-slot-queues');
   assert.equal(q.capacity, 64 * 64);
-  assert.equal(q.pathRecordBytes, pathStateLayout.size);
-  assert.equal(q.hitRecordBytes, shadingWorkItemLayout.size);
+  assert.equal(q.pathRecordBytes, pathRecordLayout.size);
+  assert.equal(q.hitRecordBytes, pathHitLayout.size);
   assert.equal(createRayTracingRenderPlan({ snapshotId: 's' }).wavefront.queueLayout.capacity, 256 * 256);
   const t = plan.wavefront.termination;
   assert.deepEqual([...t.completion], ['emissive', 'environment']);
