@@ -43,24 +43,29 @@ export const queueCounterCount = 32;
 export const rendererWavefrontComputeStatsStride = queueCounterCount * 4;
 
 /**
- * The rest of the `queues` buffer: after the statistics, two length words per bounce (rays to
- * trace at that depth, shadow rays its scatter queued), indexed from depth -1 (whose shadow word
- * stays 0: the camera queues none) to maxDepth + 1; then the entries (path slots) of the two
- * ping-pong ray queues and of the shadow queue, `capacity` words each.
+ * The rest of the `queues` buffer: after the statistics, four length words per bounce (rays to
+ * trace at that depth, shadow rays its scatter queued, and its rays that hit and that escaped),
+ * indexed from depth -1 (whose words stay 0: the camera queues no shadow ray) to maxDepth + 1;
+ * then the entries (path slots) of the two ping-pong ray queues, of the shadow queue and of the
+ * shading queue (hits from the front, escaped rays from the back), `capacity` words each.
  */
 export const queueLayoutWords = {
   lengthsBase: queueCounterCount,
-  entriesBase: 128,
+  wordsPerBounce: 4,
+  entriesBase: 256,
 } as const;
 
-/** Length word of the ray queue (kind 0) or of the shadow queue (kind 1) of bounce `depth` (>= -1). */
-export function queueLengthWord(depth: number, kind: 0 | 1): number {
-  return queueLayoutWords.lengthsBase + 2 * (depth + 1) + kind;
+/** The length words of a bounce, in order. */
+export const queueLengthKinds = { rays: 0, shadows: 1, hits: 2, misses: 3 } as const;
+
+/** Length word of queue `kind` of bounce `depth` (>= -1). */
+export function queueLengthWord(depth: number, kind: keyof typeof queueLengthKinds): number {
+  return queueLayoutWords.lengthsBase + queueLayoutWords.wordsPerBounce * (depth + 1) + queueLengthKinds[kind];
 }
 
 /** Words of the `queues` buffer for waves of `capacity` paths. */
 export function queueBufferWords(capacity: number): number {
-  return queueLayoutWords.entriesBase + 3 * capacity;
+  return queueLayoutWords.entriesBase + 4 * capacity;
 }
 
 /** Paths continuing to this depth or deeper play Russian roulette (pbrt-v4 survival rule). */
@@ -346,6 +351,7 @@ export const gpuConstants: Readonly<Record<string, number>> = Object.freeze({
   ...Object.fromEntries(Object.entries(adaptiveListSlots).map(([name, slot]) => [`ADAPTIVE_${snakeUpper(name)}`, slot])),
   ...Object.fromEntries(Object.entries(queueCounterSlots).map(([name, slot]) => [`COUNTER_${snakeUpper(name)}`, slot])),
   QUEUE_LENGTHS_BASE: queueLayoutWords.lengthsBase,
+  QUEUE_WORDS_PER_BOUNCE: queueLayoutWords.wordsPerBounce,
   QUEUE_ENTRIES_BASE: queueLayoutWords.entriesBase,
 });
 

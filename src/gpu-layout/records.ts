@@ -539,6 +539,10 @@ export const bounceUniformsLayout: StructLayout = defineStructLayout('BounceUnif
   ['nextRayCount', 'u32', 'length word of the ray queue this bounce fills'],
   ['nextRayQueue', 'u32', 'first entry of that ray queue'],
   ['nextShadowCount', 'u32', 'length word of the shadow queue this bounce fills'],
+  ['hitCount', 'u32', 'length word of the hits at the front of the shading queue'],
+  ['missCount', 'u32', 'length word of the escaped rays at the back of the shading queue'],
+  ['shadingQueue', 'u32', 'first entry of the shading queue'],
+  ['shadingQueueLast', 'u32', 'last entry of the shading queue (escaped rays fill it backwards)'],
 ]);
 
 /** Display resolve constants. */

@@ -46,9 +46,10 @@ export function packFrameUniforms(c: WavefrontPathTracingComputeConfig, s: Frame
 }
 
 /**
- * One BounceUniforms record per depth: bounce d traces and shades ray queue d % 2 (whose length word
- * is d's), fills ray queue (d + 1) % 2, traces the shadow rays bounce d - 1 queued and queues its
- * own into the shadow queue (traced by bounce d + 1, so one shadow queue serves every bounce).
+ * One BounceUniforms record per depth: bounce d traces ray queue d % 2 (whose length word is d's),
+ * sorting its rays into the shading queue (hits, escaped rays), shades that and fills ray queue
+ * (d + 1) % 2; it traces the shadow rays bounce d - 1 queued and queues its own into the shadow
+ * queue (traced by bounce d + 1, so one shadow queue serves every bounce).
  */
 export function packBounceUniforms(maxDepth: number, capacity: number): ArrayBuffer {
   const data = new ArrayBuffer((maxDepth + 1) * dynamicUniformStride);
@@ -56,13 +57,17 @@ export function packBounceUniforms(maxDepth: number, capacity: number): ArrayBuf
   for (let d = 0; d <= maxDepth; d++) {
     writeStruct(bounceUniformsLayout, new DataView(data, d * dynamicUniformStride, bounceUniformsLayout.size), 0, {
       depth: d,
-      rayCount: queueLengthWord(d, 0),
+      rayCount: queueLengthWord(d, 'rays'),
       rayQueue: rayQueue(d),
-      shadowCount: queueLengthWord(d - 1, 1),
+      shadowCount: queueLengthWord(d - 1, 'shadows'),
       shadowQueue: queueLayoutWords.entriesBase + 2 * capacity,
-      nextRayCount: queueLengthWord(d + 1, 0),
+      nextRayCount: queueLengthWord(d + 1, 'rays'),
       nextRayQueue: rayQueue(d + 1),
-      nextShadowCount: queueLengthWord(d, 1),
+      nextShadowCount: queueLengthWord(d, 'shadows'),
+      hitCount: queueLengthWord(d, 'hits'),
+      missCount: queueLengthWord(d, 'misses'),
+      shadingQueue: queueLayoutWords.entriesBase + 3 * capacity,
+      shadingQueueLast: queueLayoutWords.entriesBase + 4 * capacity - 1,
     });
   }
   return data;
