@@ -23,6 +23,12 @@ const configs: Config[] = [
   { name: 'mixed', m: { baseColor: [0.2, 0.7, 0.4], metallic: 0.5, roughness: 0.6, ior: 1.8 }, view: 60 },
 ].map((c) => ({ ...c, m: { ...c.m, roughness: f(c.m.roughness), ior: f(c.m.ior), baseColor: c.m.baseColor.map(f) as unknown as Vec3 } }));
 
+// bsdf_sample's f and pdf and bsdf_eval / bsdf_pdf at the sampled direction take different
+// operation orders (the sample goes through the sampled microfacet normal), so they agree to
+// rounding, not bit for bit: how far depends on the GPU's compiler (fused multiply-adds; NVIDIA
+// through Dawn differs by 1.5e-6 relative where lavapipe agrees to 1e-7). 64 f32 ULPs leaves
+// margin for that and still fails any real inconsistency, which is orders of magnitude larger.
+const ROUNDING = 64 * 2 ** -23;
 const N_THETA = 20;
 const N_PHI = 40;
 const SUPERSAMPLE = 16;
@@ -53,12 +59,12 @@ test('bsdf_sample returns f = bsdf_eval(wi), pdf = bsdf_pdf(wi), weight = f cos 
       const where = `${c.name} sample ${i}`;
       assert.ok(Math.abs(Math.hypot(...s.wi) - 1) < 1e-5 && s.wi[2] > 0, `${where}: wi ${s.wi}`);
       assert.ok(s.pdf > 0 && Number.isFinite(s.pdf), `${where}: pdf ${s.pdf}`);
-      assert.ok(Math.abs(s.pdf - s.pdfAtWi) <= 1e-6 * s.pdf, `${where}: sample pdf ${s.pdf} vs bsdf_pdf ${s.pdfAtWi}`);
+      assert.ok(Math.abs(s.pdf - s.pdfAtWi) <= ROUNDING * s.pdf, `${where}: sample pdf ${s.pdf} vs bsdf_pdf ${s.pdfAtWi}`);
       const refPdf = gltfBsdfPdf(c.m, wo, s.wi);
       assert.ok(Math.abs(s.pdf - refPdf) <= 2e-3 * refPdf + 1e-6, `${where}: pdf ${s.pdf} vs reference ${refPdf}`);
       const refF = gltfBsdfEval(c.m, wo, s.wi);
       for (let ch = 0; ch < 3; ch++) {
-        assert.ok(Math.abs(s.f[ch] - s.evalAtWi[ch]) <= 1e-6 * s.f[ch], `${where}: f ${s.f} vs bsdf_eval ${s.evalAtWi}`);
+        assert.ok(Math.abs(s.f[ch] - s.evalAtWi[ch]) <= ROUNDING * s.f[ch], `${where}: f ${s.f} vs bsdf_eval ${s.evalAtWi}`);
         assert.ok(Math.abs(s.f[ch] - refF[ch]) <= 2e-3 * refF[ch] + 1e-6, `${where}: f ${s.f} vs reference ${refF}`);
         const w = (s.f[ch] * s.wi[2]) / s.pdf;
         assert.ok(Math.abs(s.weight[ch] - w) <= 1e-5 * w + 1e-7, `${where}: weight ${s.weight} vs f cos / pdf`);
