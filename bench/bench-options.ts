@@ -13,6 +13,8 @@
  *   --lighting-only  | BENCH_ONLY=lighting  run the lighting benchmark alone
  *   --output         | BENCH_OUTPUT=1       add the production-output benchmark (off by default: minutes)
  *   --output-only    | BENCH_ONLY=output    run the production-output benchmark alone
+ *   --no-gpu         | BENCH_GPU=0          skip the GPU figures (bench/gpu.ts: the path tracer's defaults at 1080p)
+ *   --gpu-only       | BENCH_ONLY=gpu       run the GPU figures alone (BENCH_GPU_SCALE: fraction of their samples)
  * The command line wins over the environment. BENCH_SPP is read by the path tracer harnesses.
  */
 import { parseArgs } from 'node:util';
@@ -35,6 +37,8 @@ export interface BenchOptions {
   lighting: boolean;
   /** The production-output benchmark: opt-in. */
   output: boolean;
+  /** The GPU figures (bench/gpu.ts). */
+  gpu: boolean;
   /** Run the path tracer comparison (off with --bvh-only / --gltf-only). */
   pathTracer: boolean;
 }
@@ -83,6 +87,8 @@ export function parseBenchOptions(
       output: { type: 'boolean' },
       'no-output': { type: 'boolean' },
       'output-only': { type: 'boolean' },
+      'no-gpu': { type: 'boolean' },
+      'gpu-only': { type: 'boolean' },
     },
     strict: true,
     allowPositionals: false,
@@ -99,7 +105,7 @@ export function parseBenchOptions(
   const roundsText = values.rounds ?? env.BENCH_ROUNDS;
   const rounds = roundsText === undefined || roundsText === '' ? DEFAULT_ROUNDS : positiveInteger(roundsText, values.rounds !== undefined ? '--rounds' : 'BENCH_ROUNDS');
   // One part alone: --x-only on the command line, else BENCH_ONLY=x.
-  const parts = ['bvh', 'gltf', 'raster', 'lighting', 'output'] as const;
+  const parts = ['bvh', 'gltf', 'raster', 'lighting', 'output', 'gpu'] as const;
   const flagged = parts.filter((p) => values[`${p}-only`] === true);
   if (flagged.length > 1) throw new Error(`--${flagged[0]}-only and --${flagged[1]}-only exclude each other`);
   const fromEnv = parts.find((p) => env.BENCH_ONLY?.toLowerCase() === p);
@@ -113,7 +119,8 @@ export function parseBenchOptions(
   const gltf = on('gltf', env.BENCH_GLTF);
   const raster = on('raster', env.BENCH_RASTER);
   const lighting = on('lighting', env.BENCH_LIGHTING);
+  const gpu = on('gpu', env.BENCH_GPU);
   const outputOn = !values['no-output'] && (values.output === true || (env.BENCH_OUTPUT !== undefined && !off(env.BENCH_OUTPUT)));
   const output = only === 'output' || (only === null && outputOn);
-  return { baseline, rounds, bvh, gltf, raster, lighting, output, pathTracer: only === null };
+  return { baseline, rounds, bvh, gltf, raster, lighting, output, gpu, pathTracer: only === null };
 }

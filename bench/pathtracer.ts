@@ -34,7 +34,7 @@ export interface PathTracerBenchRow {
 }
 
 /** Icosphere with `subdivisions` levels: 20 * 4^s triangles. */
-function icosphere(radius: number, center: readonly number[], subdivisions: number): WavefrontMeshInput {
+export function icosphere(radius: number, center: readonly number[], subdivisions: number): WavefrontMeshInput {
   const t = (1 + Math.sqrt(5)) / 2;
   const verts: number[] = [];
   const push = (x: number, y: number, z: number): number => {

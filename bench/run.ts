@@ -44,7 +44,7 @@ let options: BenchOptions;
 try {
   options = parseBenchOptions(process.argv.slice(2), process.env, await readBaselineFile());
 } catch (error) {
-  console.error(`bench: ${(error as Error).message}\nusage: npm run bench -- [--baseline <ref> | --no-baseline] [--rounds <n>] [--no-bvh | --bvh-only] [--no-gltf | --gltf-only] [--no-raster | --raster-only] [--no-lighting | --lighting-only] [--output | --output-only]`);
+  console.error(`bench: ${(error as Error).message}\nusage: npm run bench -- [--baseline <ref> | --no-baseline] [--rounds <n>] [--no-bvh | --bvh-only] [--no-gltf | --gltf-only] [--no-raster | --raster-only] [--no-lighting | --lighting-only] [--output | --output-only] [--no-gpu | --gpu-only]`);
   process.exit(2);
 }
 
@@ -204,6 +204,14 @@ if (options.output) {
   const { runOutputBenchmark } = await import('./output.ts');
   console.log('\nProduction output: adaptive sampling at equal time, denoising');
   results.output = await runOutputBenchmark();
+}
+
+// GPU figures (bench/gpu.ts: the path tracer's defaults on the issue's 1080p cases; scaled down on
+// a CPU adapter): off with --no-gpu / BENCH_GPU=0 or another --x-only.
+if (options.gpu) {
+  const { runGpuBenchmark, printGpuBenchmark } = await import('./gpu.ts');
+  results.gpu = await runGpuBenchmark();
+  printGpuBenchmark(results.gpu as Awaited<ReturnType<typeof runGpuBenchmark>>);
 }
 
 // Lighting figures (bench/lighting.ts: environment importance sampling, many emitters, portals):

@@ -64,6 +64,17 @@ test('glTF knobs: on by default, --no-gltf / BENCH_GLTF=0 skip it, --gltf-only /
   assert.throws(() => parseBenchOptions(['--gltf-only', '--bvh-only'], {}, file), /exclude/);
 });
 
+test('GPU knobs: on by default, --no-gpu / BENCH_GPU=0 skip them, --gpu-only / BENCH_ONLY=gpu run them alone', () => {
+  assert.equal(parseBenchOptions([], {}, file).gpu, true);
+  assert.equal(parseBenchOptions(['--no-gpu'], {}, file).gpu, false);
+  assert.equal(parseBenchOptions([], { BENCH_GPU: '0' }, file).gpu, false);
+  for (const o of [parseBenchOptions(['--gpu-only'], {}, file), parseBenchOptions([], { BENCH_ONLY: 'gpu' }, file)]) {
+    assert.deepEqual([o.gpu, o.bvh, o.gltf, o.raster, o.lighting, o.pathTracer], [true, false, false, false, false, false]);
+  }
+  assert.equal(parseBenchOptions(['--raster-only'], {}, file).gpu, false);
+  assert.throws(() => parseBenchOptions(['--gpu-only', '--no-gpu'], {}, file), /exclude/);
+});
+
 test('bench/baseline.json: a ref is required, the description is optional', () => {
   assert.deepEqual(parseBaselineFile('{ "ref": " abc123 " }'), { ref: 'abc123' });
   assert.equal(parseBaselineFile('{ "description": "x" }'), null);
