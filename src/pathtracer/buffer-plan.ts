@@ -60,6 +60,11 @@ export interface BufferPlanInput {
   materialCells: number;
 }
 
+/** Bytes of the wave buffers (path records; statistics and queues) for waves of `wavePaths` paths. */
+export function waveBufferBytes(wavePaths: number): { paths: number; queues: number } {
+  return { paths: wavePaths * pathRecordLayout.size, queues: queueBufferWords(wavePaths) * 4 };
+}
+
 /** Byte size of every buffer a render needs, computed before anything is allocated. */
 export function planBuffers(i: BufferPlanInput): Record<PlannedBufferName, PlannedBuffer> {
   const capacity = i.wavePaths;
@@ -83,8 +88,8 @@ export function planBuffers(i: BufferPlanInput): Record<PlannedBufferName, Plann
     lights: scene(i.lightHeapCells !== undefined ? Math.max(1, i.lightHeapCells) * 16 : Math.max(1, i.lightCount) * lightRecordLayout.size, 'the lights heap'),
     lighting: frame(lightingUniformsLayout.size, 'the lighting constants'),
     frame: frame(frameUniformsLayout.size, 'the frame constants'),
-    paths: queue(capacity * pathRecordLayout.size, 'the path records'),
-    queues: queue(queueBufferWords(capacity) * 4, 'the statistics and ray queues'),
+    paths: queue(waveBufferBytes(capacity).paths, 'the path records'),
+    queues: queue(waveBufferBytes(capacity).queues, 'the statistics and queues'),
     wave: queue((i.wavesPerSubmission ?? maxWavesPerSubmission) * dynamicUniformStride, 'the wave constants'),
     bounce: queue((i.maxDepth + 1) * dynamicUniformStride, 'the bounce constants'),
     film: frame(pixels * 16, 'the accumulation buffer (width x height)'),

@@ -14,10 +14,12 @@ interface Offsets {
  * Encodes waves into a compute pass: per wave, camera rays, then per bounce (pbrt-v4's wavefront
  * stages, fused where no global barrier separates them) one traversal dispatch (this bounce's
  * closest hits and the previous bounce's shadow rays) and one shading dispatch (material
- * evaluation and scatter), then the accumulation: 2 (maxDepth + 1) + 2 dispatches per wave. The
- * per-bounce kernels loop over their GPU-side queue lengths with a grid of at most `gridLimit`
- * workgroups (direct dispatches: nothing waits on a CPU readback, and no indirect dispatch pays
- * Dawn's validation pass). `waves[i]` uses wave-uniform slot i; bounce d uses bounce slot d.
+ * evaluation and scatter), then the accumulation: 2 (maxDepth + 1) + 2 dispatches per wave. All
+ * are direct dispatches sized on the CPU, and the kernels stop at their queues' GPU-side lengths:
+ * nothing waits on a CPU readback, and no indirect dispatch pays Dawn's validation pass. The
+ * traversal loops over its queues with a grid of at most `gridLimit` workgroups; shading covers
+ * the wave (one entry per invocation). `waves[i]` uses wave-uniform slot i; bounce d uses bounce
+ * slot d.
  */
 export class WavefrontEncoder {
   private kernels: Record<WavefrontKernelName, KernelBindGroups>;
@@ -68,7 +70,7 @@ export class WavefrontEncoder {
         o.bounce = d * dynamicUniformStride;
         // Each path queues at most one ray and one shadow ray per bounce.
         this.dispatch(pass, 'trace', o, this.grid(d === 0 ? paths : 2 * paths));
-        this.dispatch(pass, 'shade', o, this.grid(paths));
+        this.dispatch(pass, 'shade', o, WavefrontEncoder.cover(paths));
       }
       this.dispatch(pass, 'accumulate', o, WavefrontEncoder.cover(w.list ? paths : Math.min(paths, this.pixels)));
     });

@@ -21,12 +21,11 @@ export class GpuBufferSet {
     return buffer;
   }
 
-  /** Destroys `old` (work already submitted keeps it until done) and creates its replacement. */
-  replace(old: GPUBuffer, label: string, size: number, usage: number, category: 'scene' | 'queue' | 'frame'): GPUBuffer {
-    const at = this.buffers.findIndex((b) => b.buffer === old);
+  /** Destroys `buffer` and stops counting it (work already submitted keeps it until that work is done). */
+  release(buffer: GPUBuffer): void {
+    const at = this.buffers.findIndex((b) => b.buffer === buffer);
     if (at >= 0) this.buffers.splice(at, 1);
-    old.destroy();
-    return this.create(label, size, usage, category);
+    buffer.destroy();
   }
 
   bytes(category: 'scene' | 'queue' | 'frame'): number {

@@ -12,7 +12,7 @@ import { normalizeWavefrontScene, type NormalizedScene } from '../scene/normaliz
 import type { WavefrontCameraInput } from '../scene/types.ts';
 import { allShaderFeatures, type ShaderFeatures } from '../shaders/features.ts';
 import { createKernelBindGroups, type PathTracerResourceMap } from './bind-groups.ts';
-import { checkBufferLimits, planBuffers, type BufferPlanInput, type PlannedBuffer, type PlannedBufferName } from './buffer-plan.ts';
+import { checkBufferLimits, planBuffers, waveBufferBytes, type BufferPlanInput, type PlannedBuffer, type PlannedBufferName } from './buffer-plan.ts';
 import { normalizeWavefrontCamera } from './camera.ts';
 import { resolveCanvasTarget } from './canvas-target.ts';
 import { createWavefrontPathTracingComputeConfig, type WavefrontPathTracingComputeConfig } from './config.ts';
@@ -394,13 +394,18 @@ class WavefrontRenderer extends EventTarget implements WavefrontPathTracingRende
   private growQueues(paths: number): void {
     const wanted = Math.min(paths, this.maxWavePaths);
     if (wanted <= this.capacity) return;
-    const plan = planBuffers({ width: this.config.width, height: this.config.height, wavePaths: wanted, maxDepth: this.config.maxDepth, aovs: false, vertexStreams: 0, indices: 0, primitiveCount: 0, alphaPrimitiveCount: 0, instanceCount: 0, lightCount: 0, materialCells: 0 });
+    const bytes = waveBufferBytes(wanted);
     const usage = BufferUsage.STORAGE | BufferUsage.COPY_SRC | BufferUsage.COPY_DST;
+    const old = { paths: this.resources.paths, queues: this.resources.queues };
     for (const name of ['paths', 'queues'] as const) {
-      const replacement = this.buffers.replace(this.resources[name], name, plan[name].bytes, usage, 'queue');
-      this.resources[name] = replacement;
-      this.resourceMap[name] = replacement;
+      this.resources[name] = this.resourceMap[name] = this.buffers.create(name, bytes[name], usage, 'queue');
     }
+    // The frame's statistics so far move with the queues (a frame may grow between its steps).
+    const encoder = this.device.createCommandEncoder({ label: 'wave buffers' });
+    encoder.copyBufferToBuffer(old.queues, 0, this.resources.queues, 0, queueCounterCount * 4);
+    this.device.queue.submit([encoder.finish()]);
+    this.buffers.release(old.paths);
+    this.buffers.release(old.queues);
     this.capacity = wanted;
     this.encoderOfWaves.rebind(createKernelBindGroups(this.device, this.kernelPipelines, this.resourceMap));
     this.device.queue.writeBuffer(this.resources.bounce, 0, packBounceUniforms(this.config.maxDepth, this.capacity));

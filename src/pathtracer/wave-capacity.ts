@@ -28,7 +28,7 @@ export function waveBound(deviceMaximum: number, tileSize: number | null): numbe
 }
 
 /**
- * Workgroups of a grid-stride dispatch (the per-bounce kernels loop over their queue). On a GPU,
+ * Workgroups of a grid-stride dispatch (the traversal kernel loops over its queues). On a GPU,
  * enough to keep every core busy with several workgroups in flight (8192 x 64 invocations, twice
  * what an H100 holds resident); the loop takes the rest. On a CPU adapter (lavapipe, SwiftShader)
  * every workgroup is a task of its thread pool, so a few per thread.
