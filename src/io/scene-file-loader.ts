@@ -1,8 +1,9 @@
 /**
- * Scene JSON files with their external resources: images given by `uri` (relative to the file, an
- * absolute URL, or a data URI; PNG, JPEG or WebP) are decoded, and `gltf` references are loaded and
- * merged (see gltf/scene-file-references.ts). Errors are INVALID_SCENE_FILE naming the field, except
- * the glTF loader's own, which keep their code and JSON pointer.
+ * Scene JSON files with their external resources: images given by `uri` (relative to the file and
+ * inside its folder, a URL of an allowed origin, or a data URI; PNG, JPEG or WebP) are decoded, and
+ * `gltf` references are loaded and merged (see gltf/scene-file-references.ts), all under one
+ * resource policy and budget (resource-policy.ts). Errors are INVALID_SCENE_FILE naming the field,
+ * except the glTF loader's own, which keep their code and JSON pointer.
  */
 import { GpuRendererError, isGpuRendererError } from '../errors/gpu-renderer-error.ts';
 import { parseSceneFile, type WavefrontSceneFile } from '../scene/scene-file.ts';
@@ -10,8 +11,17 @@ import type { WavefrontImageInput, WavefrontSceneDescription } from '../scene/ty
 import type { EnvironmentMapInput } from '../lighting/environment-map.ts';
 import { loadEnvironmentMap } from '../lighting/load-environment-map.ts';
 import { decodeImage } from './gltf/image-decoding.ts';
-import { readResource, readUrl, sourceStringToUrl } from './gltf/resources.ts';
 import { resolveGltfReferences } from './gltf/scene-file-references.ts';
+import { checkImageHeader } from './image-headers.ts';
+import { budgetOf, derivePolicy, locateSource, readReference, readSource, resolveResourcePolicy, type ResourcePolicy } from './resource-policy.ts';
+
+/** Options of `loadSceneFile` and `resolveSceneFile`. */
+export interface SceneFileLoadOptions {
+  /** Ends reading and fetching; the load rejects with the signal's reason. */
+  signal?: AbortSignal;
+  /** What the file's references may read and how much the load may decode (resource-policy.ts). */
+  resourcePolicy?: ResourcePolicy;
+}
 
 /** A resolved scene: the description plus, when its environment names a map file, that map. */
 export type WavefrontResolvedScene = WavefrontSceneDescription & { environmentMap?: EnvironmentMapInput };
@@ -28,9 +38,16 @@ function asSceneFileError(error: unknown, field: string): GpuRendererError {
   return new GpuRendererError('INVALID_SCENE_FILE', message, { field, cause: error });
 }
 
-/** Decodes `uri` images and loads `gltf` references of a parsed scene file; `base` locates relative URIs. */
-export async function resolveSceneFile(file: WavefrontSceneFile, options: { base?: string | URL; signal?: AbortSignal } = {}): Promise<ResolvedSceneFile> {
-  const base = options.base === undefined ? undefined : options.base instanceof URL ? options.base : await sourceStringToUrl(options.base);
+/**
+ * Decodes `uri` images and loads `gltf` references of a parsed scene file; `base` (the file's path
+ * or URL) locates relative URIs, which must stay in its folder. Without `base` only data URIs can
+ * be referenced.
+ */
+export async function resolveSceneFile(file: WavefrontSceneFile, options: SceneFileLoadOptions & { base?: string | URL } = {}): Promise<ResolvedSceneFile> {
+  const base = options.base === undefined ? undefined : await locateSource(options.base, { code: 'INVALID_OPTION', field: 'base' });
+  const resolved = await resolveResourcePolicy(options.resourcePolicy);
+  const policy = resolved.budget === undefined ? derivePolicy(resolved, { budget: budgetOf(resolved) }) : resolved;
+  const { signal } = options;
   const warnings: string[] = [];
   const { gltf, images, environment, ...rest } = file;
   const scene: WavefrontResolvedScene = { ...rest };
@@ -38,9 +55,10 @@ export async function resolveSceneFile(file: WavefrontSceneFile, options: { base
     // An environment map file (.hdr or .exr) becomes the renderer's environmentMap option.
     const field = 'environment.map';
     try {
-      const bytes = await readResource(environment.map, base, field, options.signal);
+      const bytes = await readReference(environment.map, base, policy, { code: 'INVALID_SCENE_FILE', field }, signal);
       scene.environmentMap = await loadEnvironmentMap(bytes, {
         field,
+        resourcePolicy: policy,
         ...(environment.intensity !== undefined ? { intensity: environment.intensity } : {}),
         ...(environment.rotationDegrees !== undefined ? { rotationRadians: (environment.rotationDegrees * Math.PI) / 180 } : {}),
       });
@@ -55,8 +73,11 @@ export async function resolveSceneFile(file: WavefrontSceneFile, options: { base
       images.map(async (image, i): Promise<WavefrontImageInput> => {
         if (!('uri' in image)) return image;
         const field = `images[${i}].uri`;
+        const site = { code: 'INVALID_SCENE_FILE', field } as const;
         try {
-          const decoded = await decodeImage(await readResource(image.uri, base, field, options.signal), field);
+          const bytes = await readReference(image.uri, base, policy, site, signal);
+          checkImageHeader(bytes, site, policy, policy.budget);
+          const decoded = await decodeImage(bytes, field, policy);
           for (const note of decoded.notes) warnings.push(`${field}: ${note}`);
           return decoded.image;
         } catch (error) {
@@ -66,18 +87,23 @@ export async function resolveSceneFile(file: WavefrontSceneFile, options: { base
     );
   }
   if (gltf === undefined || gltf.length === 0) return { scene, warnings };
-  const merged = await resolveGltfReferences(scene, gltf, { ...(base ? { base } : {}), ...(options.signal ? { signal: options.signal } : {}) });
+  const merged = await resolveGltfReferences(scene, gltf, { ...(base ? { base } : {}), ...(signal ? { signal } : {}), resourcePolicy: policy });
   return { scene: merged.scene, warnings: [...warnings, ...merged.warnings] };
 }
 
 /** Reads, parses and resolves a scene JSON file (Node: a path; anywhere: a URL). */
-export async function loadSceneFile(source: string | URL, options: { signal?: AbortSignal } = {}): Promise<ResolvedSceneFile> {
-  const url = source instanceof URL ? source : await sourceStringToUrl(source);
+export async function loadSceneFile(source: string | URL, options: SceneFileLoadOptions = {}): Promise<ResolvedSceneFile> {
+  const site = { code: 'INVALID_SCENE_FILE', field: 'scene' } as const;
+  if (typeof source !== 'string' && !(source instanceof URL)) throw new GpuRendererError('INVALID_OPTION', `expected a path or a URL, got ${source === null ? 'null' : typeof source}`, { field: 'source' });
+  const url = await locateSource(source, site);
+  const resolved = await resolveResourcePolicy(options.resourcePolicy);
+  const policy = derivePolicy(resolved, { budget: budgetOf(resolved) });
+  const bytes = await readSource(url, policy, site, options.signal);
   let text: string;
   try {
-    text = new TextDecoder().decode(await readUrl(url, options.signal));
+    text = new TextDecoder('utf-8', { fatal: true }).decode(bytes);
   } catch (error) {
-    throw new GpuRendererError('INVALID_SCENE_FILE', `cannot read ${url.href}: ${(error as Error).message}`, { field: 'scene', cause: error });
+    throw new GpuRendererError('INVALID_SCENE_FILE', `${url.href} is not UTF-8 text`, { field: 'scene', cause: error });
   }
-  return resolveSceneFile(parseSceneFile(text, String(source)), { base: url, ...options });
+  return resolveSceneFile(parseSceneFile(text, String(source)), { ...options, base: url, resourcePolicy: policy });
 }

@@ -1,5 +1,8 @@
 import { GpuRendererError } from '../errors/gpu-renderer-error.ts';
+import type { DecodeBudget } from '../io/resource-policy.ts';
+import { MAX_ENVIRONMENT_MAP_DIMENSION } from './environment-map.ts';
 import { halfToFloat } from './half-float.ts';
+import { validateOpenExr } from './openexr-header.ts';
 import type { DecodedHdrImage } from './radiance-hdr.ts';
 
 /**
@@ -45,9 +48,17 @@ async function importExrLoader(field: string): Promise<ExrLoaderConstructor> {
   }
 }
 
-/** Decodes OpenEXR bytes to RGBA float32, top row first (EXR's y grows downwards). */
-export async function decodeOpenExr(bytes: Uint8Array, field = 'source', loader?: ExrLoaderConstructor): Promise<DecodedHdrImage> {
+/**
+ * Decodes OpenEXR bytes to RGBA float32, top row first (EXR's y grows downwards). The file's
+ * structure is validated first (openexr-header.ts: what EXRLoader would read, so that it cannot
+ * read past the end or loop), its size checked against the largest map side, and the decoded
+ * texels charged to `budget` (a load's resource budget) before EXRLoader allocates them.
+ */
+export async function decodeOpenExr(bytes: Uint8Array, field = 'source', loader?: ExrLoaderConstructor, budget?: DecodeBudget): Promise<DecodedHdrImage> {
   if (!isOpenExr(bytes)) throw new GpuRendererError('INVALID_ENVIRONMENT', 'OpenEXR: missing the magic number', { field });
+  const header = validateOpenExr(bytes, field, MAX_ENVIRONMENT_MAP_DIMENSION);
+  // EXRLoader's float output, this function's flipped copy and the validated map's copy.
+  budget?.charge(header.width * header.height * 48, { code: 'INVALID_ENVIRONMENT', field }, `the ${header.width} x ${header.height} OpenEXR texels`);
   const Loader = loader ?? (await importExrLoader(field));
   let parsed: ReturnType<ExrLoaderLike['parse']>;
   try {
@@ -60,7 +71,7 @@ export async function decodeOpenExr(bytes: Uint8Array, field = 'source', loader?
     throw new GpuRendererError('INVALID_ENVIRONMENT', `OpenEXR: unreadable or truncated file (${reason})`, { field, cause });
   }
   const { width, height, data } = parsed;
-  if (!(width > 0 && height > 0) || data.length !== width * height * 4 || (parsed.format !== undefined && parsed.format !== THREE_RGBA_FORMAT)) {
+  if (width !== header.width || height !== header.height || data.length !== width * height * 4 || (parsed.format !== undefined && parsed.format !== THREE_RGBA_FORMAT)) {
     throw new GpuRendererError('INVALID_ENVIRONMENT', `OpenEXR: decoder returned ${width} x ${height} with ${data.length} values, expected RGBA`, { field });
   }
   // EXRLoader flips rows for WebGL (its row 0 is the bottom); undo that.

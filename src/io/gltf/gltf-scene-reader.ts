@@ -26,6 +26,8 @@ import { flattenNodes } from './node-flattening.ts';
 import { withMikkTSpaceTangents } from './tangents.ts';
 import { TextureTable } from './textures.ts';
 import { listVariants, selectVariant, variantMaterial } from './variants.ts';
+import { validateGltfLoadOptions } from './load-options.ts';
+import { resolveResourcePolicy, type ResourcePolicy } from '../resource-policy.ts';
 import type { VertexStreams } from './vertex-streams.ts';
 
 export interface GltfLoadOptions {
@@ -43,6 +45,11 @@ export interface GltfLoadOptions {
   signal?: AbortSignal;
   /** Decoder modules for KHR_draco_mesh_compression / EXT_meshopt_compression (loaded on demand in Node). */
   decoders?: GltfDecoderModules;
+  /**
+   * What the asset may read and how much it may decode (src/io/resource-policy.ts): by default
+   * references stay in the asset's folder, no other origin is fetched, 4 GiB are decoded at most.
+   */
+  resourcePolicy?: ResourcePolicy;
 }
 
 /**
@@ -157,11 +164,13 @@ function gpuInstances(node: Node, at: string): Mat4[] | undefined {
 }
 
 /** The body of `loadGltfScene` (load-gltf-scene.ts), loaded on its first call. */
-export async function readGltfScene(source: GltfSource, options: GltfLoadOptions = {}): Promise<GltfScene> {
+export async function readGltfScene(source: GltfSource, rawOptions: GltfLoadOptions = {}): Promise<GltfScene> {
+  const options = validateGltfLoadOptions(rawOptions);
   const { signal } = options;
   signal?.throwIfAborted();
+  const policy = await resolveResourcePolicy(options.resourcePolicy);
   const warnings: string[] = [];
-  const { document } = await readGltfDocument(source, warnings, { signal, decoders: options.decoders });
+  const { document } = await readGltfDocument(source, warnings, { signal, decoders: options.decoders, policy });
   signal?.throwIfAborted();
   const root = document.getRoot();
   const extensionsUsed = root.listExtensionsUsed().map((e) => e.extensionName);
@@ -173,7 +182,7 @@ export async function readGltfScene(source: GltfSource, options: GltfLoadOptions
   const { roots } = pickScene(document, options.scene, warnings);
   const flat = flattenNodes(roots, nodeIndex);
 
-  const table = new TextureTable(root.listTextures(), warnings);
+  const table = new TextureTable(root.listTextures(), warnings, policy);
   const materials: WavefrontMaterialInput[] = [];
   const gltfMaterials = root.listMaterials();
   for (let i = 0; i < gltfMaterials.length; i++) materials.push(await mapMaterial(gltfMaterials[i], pointer('materials', i), table));

@@ -8,6 +8,8 @@
 import type { WavefrontImageInput } from '../../scene/types.ts';
 import { failGltf } from './errors.ts';
 import { isNodeRuntime } from './resources.ts';
+import { checkImageHeader } from '../image-headers.ts';
+import { defaultResourcePolicy, type ResolvedResourcePolicy } from '../resource-policy.ts';
 
 export type ImageFormat = 'png' | 'jpeg' | 'webp' | 'ktx2' | 'avif' | 'unknown';
 
@@ -28,8 +30,12 @@ export interface DecodedImage {
   notes: string[];
 }
 
-/** Decodes `bytes`; `field` names the glTF image for errors. KTX2/AVIF must be filtered out first. */
-export async function decodeImage(bytes: Uint8Array, field: string): Promise<DecodedImage> {
+/**
+ * Decodes `bytes`; `field` names the glTF image for errors. KTX2/AVIF must be filtered out first.
+ * The header's size is checked against `policy` before a decoder allocates anything.
+ */
+export async function decodeImage(bytes: Uint8Array, field: string, policy: ResolvedResourcePolicy = defaultResourcePolicy): Promise<DecodedImage> {
+  checkImageHeader(bytes, { code: 'INVALID_GLTF', field }, policy);
   const format = sniffImageFormat(bytes);
   if (format === 'unknown') failGltf(field, 'the image is not PNG, JPEG or WebP data');
   if (format === 'ktx2' || format === 'avif') failGltf(field, `${format.toUpperCase()} images cannot be decoded`);

@@ -344,11 +344,20 @@ function validateNodes(json: Json, counts: Record<string, number>): void {
       }
     }
   });
-  // Cycles: walk up from every node; a forest reaches a root within nodes.length steps.
+  // Cycles: walk up from every node until a root or a node already known to reach one; a walk
+  // that meets its own path is a cycle. Each node is walked once (linear in the node count, so a
+  // hierarchy 100 000 deep costs no more than a flat one).
+  const reachesRoot = new Uint8Array(nodes.length); // 0 unknown, 1 on the current walk, 2 reaches a root
+  const path: number[] = [];
   for (let i = 0; i < nodes.length; i++) {
-    let steps = 0;
-    for (let n = parent[i]; n !== -1; n = parent[n]) {
-      if (++steps > nodes.length) failGltf(pointer('nodes', i), 'the node hierarchy has a cycle');
+    path.length = 0;
+    let n = i;
+    while (n !== -1 && reachesRoot[n] === 0) {
+      reachesRoot[n] = 1;
+      path.push(n);
+      n = parent[n];
     }
+    if (n !== -1 && reachesRoot[n] === 1) failGltf(pointer('nodes', n), 'the node hierarchy has a cycle');
+    for (const k of path) reachesRoot[k] = 2;
   }
 }

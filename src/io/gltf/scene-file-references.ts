@@ -23,7 +23,7 @@ import { describe } from '../../errors/validate.ts';
 import type { WavefrontMaterialInput, WavefrontPunctualLightInput, WavefrontSceneDescription } from '../../scene/types.ts';
 import { loadGltfScene, type GltfLoadOptions, type GltfScene } from './load-gltf-scene.ts';
 import { determinant3, IDENTITY, multiply, normalize, transformDirection, transformPoint } from './matrix.ts';
-import { sourceStringToUrl } from './resources.ts';
+import { budgetOf, derivePolicy, folderOf, isInsideFolder, locateSource, resolveReference, resolveResourcePolicy, type ResourcePolicy } from '../resource-policy.ts';
 
 export interface GltfSceneReference {
   src: string;
@@ -81,17 +81,23 @@ function placeLight(light: WavefrontPunctualLightInput, m: readonly number[]): W
 }
 
 /**
- * Loads every reference (relative to `base`, the scene file's path or URL) and merges it into
- * `scene`. Returns the merged scene and the loaders' warnings, each prefixed with its reference.
- * Loader errors keep their code and JSON pointer; the message names the reference.
+ * Loads every reference (relative to `base`, the scene file's path or URL, and inside its folder
+ * under `resourcePolicy`: see src/io/resource-policy.ts) and merges it into `scene`. Returns the
+ * merged scene and the loaders' warnings, each prefixed with its reference. Loader errors keep
+ * their code and JSON pointer; the message names the reference. Without `base` only data URIs
+ * can be referenced.
  */
 export async function resolveGltfReferences(
   scene: WavefrontSceneDescription,
   references: readonly GltfSceneReference[],
-  options: { base?: string | URL; signal?: AbortSignal; load?: (source: URL, options: GltfLoadOptions) => Promise<GltfScene> } = {},
+  options: { base?: string | URL; signal?: AbortSignal; resourcePolicy?: ResourcePolicy; load?: (source: URL, options: GltfLoadOptions) => Promise<GltfScene> } = {},
 ): Promise<{ scene: WavefrontSceneDescription; warnings: string[] }> {
   const load = options.load ?? loadGltfScene;
-  const baseUrl = options.base === undefined ? undefined : options.base instanceof URL ? options.base : await sourceStringToUrl(options.base);
+  const baseUrl = options.base === undefined ? undefined : await locateSource(options.base, { code: 'INVALID_OPTION', field: 'base' });
+  const resolved = await resolveResourcePolicy(options.resourcePolicy);
+  // The assets share one budget: references cannot multiply what a scene file may decode.
+  const policy = derivePolicy(resolved, { budget: budgetOf(resolved) });
+  const folder = baseUrl === undefined ? undefined : folderOf(baseUrl);
   const out: WavefrontSceneDescription = {
     ...scene,
     meshes: [...(scene.meshes ?? [])],
@@ -106,10 +112,20 @@ export async function resolveGltfReferences(
   for (let i = 0; i < references.length; i++) {
     const ref = references[i];
     const label = `gltf[${i}] (${JSON.stringify(ref.src)})`;
-    const url = baseUrl === undefined ? await sourceStringToUrl(ref.src) : new URL(ref.src, baseUrl);
+    const site = { code: 'INVALID_SCENE_FILE', field: `gltf[${i}].src` } as const;
+    // A data URI carries the asset itself; anything else is a reference under the policy.
+    const url = /^data:/i.test(ref.src) ? await locateSource(ref.src, site) : resolveReference(ref.src, baseUrl, policy, site);
+    // The asset file itself must be a regular file inside the scene's folder (after links).
+    const assetPolicy = folder !== undefined && isInsideFolder(url, folder) ? derivePolicy(policy, { root: folder }) : policy;
     let gltf: GltfScene;
     try {
-      gltf = await load(url, { camera: ref.camera, variant: ref.variant, scene: ref.scene, signal: options.signal });
+      gltf = await load(url, {
+        ...(ref.camera !== undefined ? { camera: ref.camera } : {}),
+        ...(ref.variant !== undefined ? { variant: ref.variant } : {}),
+        ...(ref.scene !== undefined ? { scene: ref.scene } : {}),
+        ...(options.signal !== undefined ? { signal: options.signal } : {}),
+        resourcePolicy: assetPolicy,
+      });
     } catch (error) {
       if (!isGpuRendererError(error)) throw error;
       const message = error.field ? error.message.slice(error.field.length + 2) : error.message;

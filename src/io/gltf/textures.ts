@@ -18,6 +18,7 @@ import type {
 } from '../../scene/types.ts';
 import { failGltf, pointer } from './errors.ts';
 import { decodeImage, sniffImageFormat } from './image-decoding.ts';
+import type { ResolvedResourcePolicy } from '../resource-policy.ts';
 
 const WRAP: Readonly<Record<number, WavefrontWrapMode>> = { 10497: 'repeat', 33071: 'clamp-to-edge', 33648: 'mirrored-repeat' };
 const MAG: Readonly<Record<number, WavefrontMagFilter>> = { 9728: 'nearest', 9729: 'linear' };
@@ -56,10 +57,12 @@ export class TextureTable {
   private readonly textureIndex = new Map<string, number>();
   private readonly allImages: readonly Texture[];
   private readonly warnings: string[];
+  private readonly policy: ResolvedResourcePolicy | undefined;
 
-  constructor(allImages: readonly Texture[], warnings: string[]) {
+  constructor(allImages: readonly Texture[], warnings: string[], policy?: ResolvedResourcePolicy) {
     this.allImages = allImages;
     this.warnings = warnings;
+    this.policy = policy;
   }
 
   /** Decodes the image once; undefined when its format cannot be decoded (KTX2, AVIF). */
@@ -83,7 +86,7 @@ export class TextureTable {
       this.warnings.push(`${at}: ${format.toUpperCase()} images cannot be decoded; the material slots using it are left without a texture`);
       return undefined;
     }
-    const { image, notes } = await decodeImage(bytes, at);
+    const { image, notes } = await decodeImage(bytes, at, this.policy);
     for (const note of notes) this.warnings.push(`${at}: ${note}`);
     this.images.push(image);
     return this.images.length - 1;
