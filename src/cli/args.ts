@@ -3,6 +3,7 @@ import { GpuRendererError } from '../errors/gpu-renderer-error.ts';
 import type { WavefrontAovName } from '../post/aovs.ts';
 import { imageFileFormatFromPath, type ImageFileFormat } from '../post/files/image-file.ts';
 import { parseAovList, parseDuration } from '../post/option-parsing.ts';
+import { parseOrigin } from '../io/resource-policy.ts';
 import type { WavefrontToneMapping } from '../scene/types.ts';
 
 export interface RenderCommand {
@@ -48,6 +49,8 @@ export interface RenderCommand {
   envIntensity?: number;
   /** Rotation of the environment map about +Y in degrees (`--env-rotation`). */
   envRotationDegrees?: number;
+  /** Origins the scene's references may be fetched from (`--allow-origin`, repeatable); default none. */
+  allowedOrigins?: string[];
 }
 
 export interface HelpCommand {
@@ -111,6 +114,9 @@ Options:
   --camera <name>          glTF: render from the camera (node or camera) of that name
                            (default the scene's first camera, else one framing the scene)
   --variant <name>         glTF: KHR_materials_variants variant to render
+  --allow-origin <origin>  let the scene's references fetch from this origin (e.g.
+                           https://cdn.example.com; repeatable or comma separated). By default a
+                           scene reads only files in its own folder and makes no network request
   -h, --help               show this help
 `;
 
@@ -255,6 +261,9 @@ export function parseRenderArgs(argv: readonly string[]): RenderCommand | HelpCo
         break;
       case '--env-rotation':
         command.envRotationDegrees = finiteNumber(flag, take());
+        break;
+      case '--allow-origin':
+        for (const origin of take().split(',')) (command.allowedOrigins ??= []).push(parseOrigin(origin.trim(), flag));
         break;
       default:
         invalid(flag, `unknown option (see --help)`);

@@ -17,6 +17,7 @@ import { defaultAdaptiveSamplingParameters } from '../post/adaptive-sampling/con
 import { createProgressBar, type ProgressStream } from './progress.ts';
 import type { RenderSummary } from './render-format.ts';
 import { isGltfPath, type RenderCommand } from './args.ts';
+import type { ResourcePolicy } from '../io/resource-policy.ts';
 
 export type { RenderSummary } from './render-format.ts';
 
@@ -26,20 +27,21 @@ export type { RenderSummary } from './render-format.ts';
  */
 export async function loadScene(
   scenePath: string | undefined,
-  options: { camera?: string; variant?: string; stderr?: ProgressStream } = {},
+  options: { camera?: string; variant?: string; stderr?: ProgressStream; resourcePolicy?: ResourcePolicy } = {},
 ): Promise<WavefrontSceneDescription & { environmentMap?: EnvironmentMapInput }> {
   if (scenePath === undefined) return createCornellBoxScene();
+  const resourcePolicy = options.resourcePolicy;
   if (isGltfPath(scenePath)) {
     // Loaded on demand so JSON scenes never pull in the glTF reader and its decoders.
     const { loadGltfScene } = await import('../io/gltf/load-gltf-scene.ts');
-    const gltf = await loadGltfScene(scenePath, { camera: options.camera, variant: options.variant });
+    const gltf = await loadGltfScene(scenePath, { camera: options.camera, variant: options.variant, resourcePolicy });
     for (const warning of gltf.warnings) options.stderr?.write(`warning: ${warning}\n`);
     // Spreading keeps the renderer's scene keys only; the loader's metadata is non-enumerable.
     return { ...gltf };
   }
   // Scene JSON: its `uri` images are decoded and its `gltf` references loaded and merged.
   const { loadSceneFile } = await import('../io/scene-file-loader.ts');
-  const file = await loadSceneFile(scenePath);
+  const file = await loadSceneFile(scenePath, { resourcePolicy });
   for (const warning of file.warnings) options.stderr?.write(`warning: ${warning}\n`);
   return file.scene;
 }
@@ -54,7 +56,10 @@ export function cliMinimumSamples(command: RenderCommand): number | undefined {
 
 export async function runRenderCommand(command: RenderCommand, io: { stderr: ProgressStream } = { stderr: process.stderr }): Promise<RenderSummary> {
   const t0 = performance.now();
-  const scene = await applyEnvironmentFlags(await loadScene(command.scenePath, { camera: command.camera, variant: command.variant, stderr: io.stderr }), command);
+  // What the scene's references may touch: their own folder, and the origins --allow-origin names.
+  const resourcePolicy: ResourcePolicy = { allowedOrigins: command.allowedOrigins ?? [] };
+  const loaded = await loadScene(command.scenePath, { camera: command.camera, variant: command.variant, stderr: io.stderr, resourcePolicy });
+  const scene = await applyEnvironmentFlags(loaded, command, resourcePolicy);
   const minimumSamplesPerPixel = cliMinimumSamples(command);
   const renderer: WavefrontPathTracingRenderer = await createWavefrontPathTracingComputeRenderer({
     width: command.width,

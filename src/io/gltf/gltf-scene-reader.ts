@@ -27,6 +27,7 @@ import { withMikkTSpaceTangents } from './tangents.ts';
 import { TextureTable } from './textures.ts';
 import { listVariants, selectVariant, variantMaterial } from './variants.ts';
 import { validateGltfLoadOptions } from './load-options.ts';
+import { acceptScene, type SceneOrigins } from './scene-acceptance.ts';
 import { resolveResourcePolicy, type ResourcePolicy } from '../resource-policy.ts';
 import type { VertexStreams } from './vertex-streams.ts';
 
@@ -188,6 +189,8 @@ export async function readGltfScene(source: GltfSource, rawOptions: GltfLoadOpti
   for (let i = 0; i < gltfMaterials.length; i++) materials.push(await mapMaterial(gltfMaterials[i], pointer('materials', i), table));
   const materialIndex = indexMap(gltfMaterials);
   let defaultMaterial: number | undefined;
+  // Where each scene entry came from, for errors the renderer's validation raises (scene-acceptance.ts).
+  const origins: SceneOrigins = { meshes: [], materials: gltfMaterials.map((_, i) => pointer('materials', i)), instances: [], lights: [], images: [] };
   signal?.throwIfAborted();
 
   const meshes: WavefrontMeshInput[] = [];
@@ -224,6 +227,7 @@ export async function readGltfScene(source: GltfSource, rawOptions: GltfLoadOpti
       const name = mesh.getName();
       const entry: WavefrontMeshInput = { id: `${name === '' ? `mesh ${m}` : name}/${p}`, ...streams, material };
       meshes.push(entry);
+      origins.meshes.push(at);
       entries.push({ index: meshes.length - 1, ...localBounds(streams.positions) });
     }
     meshCache.set(key, entries);
@@ -255,6 +259,7 @@ export async function readGltfScene(source: GltfSource, rawOptions: GltfLoadOpti
         for (const entry of entries) {
           const id = `${name === '' ? `node ${index}` : name}${locals === undefined ? '' : `#${k}`}`;
           instances.push({ id, mesh: entry.index, transform });
+          origins.instances.push(at);
           for (let c = 0; c < 8; c++) {
             const corner = [c & 1 ? entry.max[0] : entry.min[0], c & 2 ? entry.max[1] : entry.min[1], c & 4 ? entry.max[2] : entry.min[2]];
             const p = transformPoint(transform, corner);
@@ -273,13 +278,18 @@ export async function readGltfScene(source: GltfSource, rawOptions: GltfLoadOpti
       cameras.push({ name: camera.getName() === '' ? fallback : camera.getName(), cameraIndex: ci, nodeIndex: index, nodeName: name, camera: cameraFromNode(camera, world) });
     }
     const light = node.getExtension<Light>('KHR_lights_punctual');
-    if (light !== null) lights.push(worldLight(light, world));
+    if (light !== null) {
+      lights.push(worldLight(light, world));
+      origins.lights.push(`${at}/extensions/KHR_lights_punctual`);
+    }
   }
   const bounds: GltfBounds | undefined = instances.length === 0 ? undefined : { min: boundsMin, max: boundsMax };
   const camera = chooseCamera(cameras, options.camera, bounds);
   signal?.throwIfAborted();
 
   const scene = { meshes, instances, materials, textures: table.textures, images: table.images, camera, lights };
+  const chosen = cameras.find((c) => c.camera === camera);
+  acceptScene(scene, origins, [{ camera, at: chosen === undefined ? '' : pointer('nodes', chosen.nodeIndex) }]);
   const metadata = { warnings, cameras, variants: listVariants(document).map((v) => v.getName()), bounds, extensionsUsed, document };
   for (const [key, value] of Object.entries(metadata)) Object.defineProperty(scene, key, { value, enumerable: false, writable: false, configurable: true });
   return scene as GltfScene;

@@ -8,6 +8,7 @@
  */
 import { failGltf, pointer } from './errors.ts';
 import { SUPPORTED_EXTENSIONS } from './extensions.ts';
+import { validateGltfProperties } from './property-validation.ts';
 
 type Json = Record<string, unknown>;
 
@@ -135,6 +136,7 @@ export function validateGltfJson(value: unknown): ValidatedJson {
     list(scene, 'nodes').forEach((node, j) => reference(node, pointer('scenes', i, 'nodes', j), counts.nodes, 'nodes'));
   });
   if (json.scene !== undefined) reference(json.scene, '/scene', counts.scenes, 'scenes');
+  validateGltfProperties(json, counts);
   return { json, bufferByteLengths };
 }
 
