@@ -41,7 +41,7 @@ export interface ResourcePolicy {
   root?: string | URL;
   /** Largest file, response body or data URI read, in bytes. Default 2 GiB. */
   maxResourceBytes?: number;
-  /** Bytes one load may read and decode in all (resources, accessor arrays, image texels, maps). Default 4 GiB. */
+  /** Bytes one load may read and decode in all (resources, parsed JSON, accessor arrays, image texels, maps). Default 2 GiB. */
   maxDecodedBytes?: number;
   /** Largest image width or height, in texels, read from the header before decoding. Default 16384. */
   maxImageDimension?: number;
@@ -76,7 +76,7 @@ export const defaultResourcePolicy: ResolvedResourcePolicy = markResolved({
   allowedOrigins: Object.freeze([]) as readonly string[],
   root: undefined,
   maxResourceBytes: 2 ** 31,
-  maxDecodedBytes: 2 ** 32,
+  maxDecodedBytes: 2 ** 31,
   maxImageDimension: 16384,
   fetchTimeoutMs: 60_000,
 });

@@ -13,6 +13,7 @@ import { loadEnvironmentMap } from '../lighting/load-environment-map.ts';
 import { decodeImage } from './gltf/image-decoding.ts';
 import { resolveGltfReferences } from './gltf/scene-file-references.ts';
 import { checkImageHeader } from './image-headers.ts';
+import { JSON_BYTES_PER_VALUE, MAX_JSON_DEPTH, scanJson } from './json-scan.ts';
 import { budgetOf, derivePolicy, locateSource, readReference, readSource, resolveResourcePolicy, type ResourcePolicy } from './resource-policy.ts';
 
 /** Options of `loadSceneFile` and `resolveSceneFile`. */
@@ -99,6 +100,9 @@ export async function loadSceneFile(source: string | URL, options: SceneFileLoad
   const resolved = await resolveResourcePolicy(options.resourcePolicy);
   const policy = derivePolicy(resolved, { budget: budgetOf(resolved) });
   const bytes = await readSource(url, policy, site, options.signal);
+  const shape = scanJson(bytes);
+  if (shape.depth > MAX_JSON_DEPTH) throw new GpuRendererError('INVALID_SCENE_FILE', `the JSON nests ${shape.depth} levels deep; the loader reads at most ${MAX_JSON_DEPTH}`, { field: 'scene' });
+  policy.budget!.charge(shape.values * JSON_BYTES_PER_VALUE, site, `parsing the JSON's ${shape.values} values`);
   let text: string;
   try {
     text = new TextDecoder('utf-8', { fatal: true }).decode(bytes);

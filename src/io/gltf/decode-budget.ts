@@ -17,11 +17,16 @@ type Json = Record<string, unknown>;
 
 const list = (json: Json, key: string): Json[] => (Array.isArray(json[key]) ? (json[key] as Json[]) : []);
 
-/** Charges accessor arrays and meshopt views (the JSON was validated: counts and types are sound). */
+const COMPONENTS: Readonly<Record<string, number>> = { SCALAR: 1, VEC2: 2, VEC3: 3, VEC4: 4, MAT2: 4, MAT3: 9, MAT4: 16 };
+
+/**
+ * Charges accessor arrays (the reader's array and the loader's float32 or uint32 copy) and meshopt
+ * views (the JSON was validated: counts and types are sound).
+ */
 export function chargeGeometry(json: Json, budget: DecodeBudget): void {
   list(json, 'accessors').forEach((accessor, i) => {
     const count = accessor.count as number;
-    const bytes = count * accessorElementSize(accessor.componentType as number, accessor.type as string);
+    const bytes = count * (accessorElementSize(accessor.componentType as number, accessor.type as string) + 4 * COMPONENTS[accessor.type as string]!);
     budget.charge(bytes, { code: 'INVALID_GLTF', field: pointer('accessors', i, 'count') }, `accessor ${i}'s ${count} ${String(accessor.type)} elements`);
   });
   list(json, 'bufferViews').forEach((view, i) => {

@@ -13,7 +13,8 @@ import { failGltf, gltfError, pointer } from './errors.ts';
 import { IGNORED_OPTIONAL_EXTENSIONS, UNSUPPORTED_TEXTURE_EXTENSIONS } from './extensions.ts';
 import { isGlb, parseGlb } from './glb-container.ts';
 import { isObject, validateGltfJson } from './json-validation.ts';
-import { budgetOf, derivePolicy, locateSource, readSource, type ResolvedResourcePolicy } from '../resource-policy.ts';
+import { budgetOf, derivePolicy, locateSource, readSource, type DecodeBudget, type ResolvedResourcePolicy } from '../resource-policy.ts';
+import { JSON_BYTES_PER_VALUE, MAX_JSON_DEPTH, scanJson } from '../json-scan.ts';
 import { chargeGeometry, chargeImages } from './decode-budget.ts';
 import { readResource } from './resources.ts';
 import { validateSparseIndices } from './sparse-indices.ts';
@@ -70,6 +71,13 @@ async function sourceBytes(source: Exclude<GltfSource, Document>, policy: Resolv
   if (typeof source !== 'string' && !(source instanceof URL)) failGltf('', `expected a path, a URL, an ArrayBuffer, a Uint8Array or a Document, got ${source === null ? 'null' : typeof source}`);
   const url = await locateSource(source, site);
   return { bytes: await readSource(url, policy, site, signal), base: url };
+}
+
+/** Refuses JSON nested deeper than MAX_JSON_DEPTH and charges its parsed size before parsing. */
+function checkJsonShape(text: Uint8Array | string, field: string, budget: DecodeBudget): void {
+  const shape = scanJson(text);
+  if (shape.depth > MAX_JSON_DEPTH) failGltf(field, `the JSON nests ${shape.depth} levels deep; the loader reads at most ${MAX_JSON_DEPTH}`);
+  budget.charge(shape.values * JSON_BYTES_PER_VALUE, { code: 'INVALID_GLTF', field }, `parsing the JSON's ${shape.values} values`);
 }
 
 function parseJsonText(bytes: Uint8Array, field: string): unknown {
@@ -180,6 +188,7 @@ export async function readGltfDocument(
   if (isGlb(bytes)) {
     const glb = parseGlb(bytes);
     bin = glb.bin;
+    checkJsonShape(glb.jsonText, 'glb:/chunks/0', budget);
     try {
       rawJson = JSON.parse(glb.jsonText);
     } catch (error) {
@@ -193,6 +202,7 @@ export async function readGltfDocument(
       const magic = bytes.byteLength >= 4 ? new DataView(bytes.buffer, bytes.byteOffset, 4).getUint32(0, true) : 0;
       failGltf('glb:/header/magic', `neither glTF JSON nor a GLB: expected magic 0x46546c67 ("glTF"), got 0x${magic.toString(16).padStart(8, '0')}`);
     }
+    checkJsonShape(bytes, '', budget);
     rawJson = parseJsonText(bytes, '');
   }
   const { json, bufferByteLengths } = validateGltfJson(rawJson);

@@ -48,7 +48,7 @@ export interface GltfLoadOptions {
   decoders?: GltfDecoderModules;
   /**
    * What the asset may read and how much it may decode (src/io/resource-policy.ts): by default
-   * references stay in the asset's folder, no other origin is fetched, 4 GiB are decoded at most.
+   * references stay in the asset's folder, no other origin is fetched, 2 GiB are decoded at most.
    */
   resourcePolicy?: ResourcePolicy;
 }

@@ -31,7 +31,7 @@ function rgbeToLinear(scanline: Uint8Array, width: number, exposure: number, out
 /**
  * Decodes a Radiance .hdr file into linear RGBA float32, top row first (alpha 1). A resolution
  * over `limits.maxImageDimension` (default 16384) per side or `limits.maxDecodedBytes` (default
- * 4 GiB) of texels is refused before anything is allocated.
+ * 2 GiB) of texels is refused before anything is allocated.
  */
 export function decodeHdr(bytes: Uint8Array, limits: { maxImageDimension?: number; maxDecodedBytes?: number } = {}): LinearRgbaImage {
   if (!(bytes instanceof Uint8Array)) throw new GpuRendererError('INVALID_OPTION', 'expected a Uint8Array', { field: 'bytes' });
