@@ -98,7 +98,11 @@ export async function loadEnvironmentMap(source: EnvironmentMapSource, options: 
   else if (isOpenExr(bytes)) image = await decodeOpenExr(bytes, field, options.EXRLoader, budget);
   else throw new GpuRendererError('INVALID_ENVIRONMENT', 'not a Radiance .hdr ("#?" header) or OpenEXR file', { field });
   // The decoded texels are this call's own: zeroed in place (validation copies them anyway).
-  if (negative === 'zero') options.onNegativeTexels?.(zeroNegativeChannels(image.data));
+  if (negative === 'zero') {
+    // Zeroed whether or not a callback listens (an optional call would skip evaluating its argument).
+    const report = zeroNegativeChannels(image.data);
+    options.onNegativeTexels?.(report);
+  }
   return validateEnvironmentMap(
     { width: image.width, height: image.height, data: image.data, intensity: options.intensity, rotationRadians: options.rotationRadians },
     field,
