@@ -47,6 +47,11 @@ export interface ResourcePolicy {
   maxImageDimension?: number;
   /** Time limit of each network request, body included, in milliseconds. Default 60000. */
   fetchTimeoutMs?: number;
+  /**
+   * Time limit of a decoder that cannot be trusted to end on corrupt data (OpenEXR's, run in a
+   * worker thread in Node), in milliseconds. Default 60000.
+   */
+  decodeTimeoutMs?: number;
 }
 
 export interface ResolvedResourcePolicy {
@@ -62,6 +67,7 @@ export interface ResolvedResourcePolicy {
   readonly maxDecodedBytes: number;
   readonly maxImageDimension: number;
   readonly fetchTimeoutMs: number;
+  readonly decodeTimeoutMs: number;
 }
 
 const resolvedPolicies = new WeakSet<object>();
@@ -79,6 +85,7 @@ export const defaultResourcePolicy: ResolvedResourcePolicy = markResolved({
   maxDecodedBytes: 2 ** 31,
   maxImageDimension: 16384,
   fetchTimeoutMs: 60_000,
+  decodeTimeoutMs: 60_000,
 });
 
 /** The same policy with another root and/or a budget shared with the load that derives it. */
@@ -110,7 +117,7 @@ async function nodeModule<T>(specifier: string): Promise<T> {
   return (await import(specifier)) as T;
 }
 
-const KEYS = ['allowedOrigins', 'root', 'maxResourceBytes', 'maxDecodedBytes', 'maxImageDimension', 'fetchTimeoutMs'];
+const KEYS = ['allowedOrigins', 'root', 'maxResourceBytes', 'maxDecodedBytes', 'maxImageDimension', 'fetchTimeoutMs', 'decodeTimeoutMs'];
 
 /** Checks a `resourcePolicy` option (INVALID_OPTION naming `field.key`) and fills in the defaults. */
 export async function resolveResourcePolicy(input: unknown, field = 'resourcePolicy'): Promise<ResolvedResourcePolicy> {
@@ -146,6 +153,7 @@ export async function resolveResourcePolicy(input: unknown, field = 'resourcePol
     maxDecodedBytes: positive('maxDecodedBytes', defaultResourcePolicy.maxDecodedBytes),
     maxImageDimension: positive('maxImageDimension', defaultResourcePolicy.maxImageDimension, 65536),
     fetchTimeoutMs: positive('fetchTimeoutMs', defaultResourcePolicy.fetchTimeoutMs, 2 ** 31 - 1),
+    decodeTimeoutMs: positive('decodeTimeoutMs', defaultResourcePolicy.decodeTimeoutMs, 2 ** 31 - 1),
   });
 }
 

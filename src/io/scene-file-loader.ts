@@ -10,6 +10,9 @@ import { parseSceneFile, type WavefrontSceneFile } from '../scene/scene-file.ts'
 import type { WavefrontImageInput, WavefrontSceneDescription } from '../scene/types.ts';
 import type { EnvironmentMapInput } from '../lighting/environment-map.ts';
 import { loadEnvironmentMap } from '../lighting/load-environment-map.ts';
+import { validateLights } from '../lighting/lights.ts';
+import { normalizeWavefrontCamera } from '../pathtracer/camera.ts';
+import { normalizeWavefrontScene } from '../scene/normalize-scene.ts';
 import { decodeImage } from './gltf/image-decoding.ts';
 import { resolveGltfReferences } from './gltf/scene-file-references.ts';
 import { checkImageHeader } from './image-headers.ts';
@@ -87,9 +90,32 @@ export async function resolveSceneFile(file: WavefrontSceneFile, options: SceneF
       }),
     );
   }
-  if (gltf === undefined || gltf.length === 0) return { scene, warnings };
+  if (gltf === undefined || gltf.length === 0) {
+    acceptSceneFile(scene);
+    return { scene, warnings };
+  }
+  // The file's own content first (its fields are the file's), then the merge.
+  acceptSceneFile(scene);
   const merged = await resolveGltfReferences(scene, gltf, { ...(base ? { base } : {}), ...(signal ? { signal } : {}), resourcePolicy: policy });
   return { scene: merged.scene, warnings: [...warnings, ...merged.warnings] };
+}
+
+/**
+ * The scene through the renderer's own validation (scene parts, lights, camera), so that a file
+ * the renderer would refuse is refused at load, as INVALID_SCENE_FILE naming the same field.
+ */
+function acceptSceneFile(scene: WavefrontResolvedScene): void {
+  try {
+    normalizeWavefrontScene(scene);
+    validateLights(scene.lights);
+    if (scene.camera !== undefined) normalizeWavefrontCamera(scene.camera);
+  } catch (error) {
+    if (!isGpuRendererError(error)) throw error;
+    throw new GpuRendererError('INVALID_SCENE_FILE', error.field && error.message.startsWith(`${error.field}: `) ? error.message.slice(error.field.length + 2) : error.message, {
+      ...(error.field !== undefined ? { field: error.field } : {}),
+      cause: error,
+    });
+  }
 }
 
 /** Reads, parses and resolves a scene JSON file (Node: a path; anywhere: a URL). */

@@ -95,7 +95,7 @@ export async function loadEnvironmentMap(source: EnvironmentMapSource, options: 
   else bytes = await readSource(await locateSource(source, site), derivePolicy(resourcePolicy, { budget }), site, signal);
   let image;
   if (isRadianceHdr(bytes)) image = decodeRadianceHdr(bytes, field, budget);
-  else if (isOpenExr(bytes)) image = await decodeOpenExr(bytes, field, options.EXRLoader, budget);
+  else if (isOpenExr(bytes)) image = await decodeOpenExr(bytes, field, options.EXRLoader, { budget, decodeTimeoutMs: resourcePolicy.decodeTimeoutMs, ...(signal ? { signal } : {}) });
   else throw new GpuRendererError('INVALID_ENVIRONMENT', 'not a Radiance .hdr ("#?" header) or OpenEXR file', { field });
   // The decoded texels are this call's own: zeroed in place (validation copies them anyway).
   if (negative === 'zero') {

@@ -95,7 +95,9 @@ export function validateGltfJson(value: unknown): ValidatedJson {
     return integer(buffer.byteLength, pointer('buffers', i, 'byteLength'), 1);
   });
 
-  list(json, 'bufferViews').forEach((entry, i) => validateBufferView(entry, i, bufferByteLengths, counts.buffers));
+  // EXT_meshopt_compression fallback buffers carry no data: only compressed views may use them.
+  const fallbacks = list(json, 'buffers').map((b) => isObject(b) && isObject(b.extensions) && isObject(b.extensions.EXT_meshopt_compression) && b.extensions.EXT_meshopt_compression.fallback === true);
+  list(json, 'bufferViews').forEach((entry, i) => validateBufferView(entry, i, bufferByteLengths, counts.buffers, fallbacks));
   const views = list(json, 'bufferViews') as Json[];
   list(json, 'accessors').forEach((entry, i) => validateAccessor(entry, i, views));
   list(json, 'images').forEach((entry, i) => {
@@ -140,7 +142,7 @@ export function validateGltfJson(value: unknown): ValidatedJson {
   return { json, bufferByteLengths };
 }
 
-function validateBufferView(entry: unknown, i: number, bufferByteLengths: number[], bufferCount: number): void {
+function validateBufferView(entry: unknown, i: number, bufferByteLengths: number[], bufferCount: number, fallbacks: boolean[]): void {
   const at = pointer('bufferViews', i);
   const view = object(entry, at);
   const buffer = reference(view.buffer, `${at}/buffer`, bufferCount, 'buffers');
@@ -154,10 +156,12 @@ function validateBufferView(entry: unknown, i: number, bufferByteLengths: number
     failGltf(at, `bytes ${byteOffset}..${byteOffset + byteLength} run past the end of buffer ${buffer} (${bufferByteLengths[buffer]} bytes)`);
   }
   const meshopt = isObject(view.extensions) ? view.extensions.EXT_meshopt_compression : undefined;
+  if (meshopt === undefined && fallbacks[buffer]) failGltf(`${at}/buffer`, `buffer ${buffer} is an EXT_meshopt_compression fallback without data; only a compressed view may use it`);
   if (meshopt !== undefined) {
     const mat = `${at}/extensions/EXT_meshopt_compression`;
     const m = object(meshopt, mat);
     const source = reference(m.buffer, `${mat}/buffer`, bufferCount, 'buffers');
+    if (fallbacks[source]) failGltf(`${mat}/buffer`, `buffer ${source} is a fallback without data; the compressed bytes must be in a buffer with data`);
     const offset = optionalInteger(m.byteOffset, `${mat}/byteOffset`, 0);
     const length = integer(m.byteLength, `${mat}/byteLength`, 1);
     if (offset + length > bufferByteLengths[source]) failGltf(mat, `compressed bytes ${offset}..${offset + length} run past the end of buffer ${source}`);

@@ -252,10 +252,37 @@ function numbers(value: unknown, at: string): void {
 const list = (json: Json, key: string): Json[] => (Array.isArray(json[key]) ? (json[key] as Json[]) : []);
 
 /**
+ * Every `extensions` property is an object of objects (glTF 2.0 section 5.x "extension"): a
+ * number there reaches @gltf-transform's extension readers as a TypeError. Walked with a stack
+ * (the JSON's depth was bounded before parsing); `extras` hold application data and are skipped.
+ */
+function validateExtensionObjects(json: Json): void {
+  const stack: Array<{ value: unknown; at: string }> = [{ value: json, at: '' }];
+  while (stack.length > 0) {
+    const { value, at } = stack.pop()!;
+    if (Array.isArray(value)) {
+      value.forEach((v, i) => stack.push({ value: v, at: `${at}/${i}` }));
+      continue;
+    }
+    if (!isObject(value)) continue;
+    for (const [key, v] of Object.entries(value)) {
+      const kat = `${at}/${key.replaceAll('~', '~0').replaceAll('/', '~1')}`;
+      if (key === 'extras') continue;
+      if (key === 'extensions') {
+        if (!isObject(v)) failGltf(kat, `expected an object of extensions, got ${show(v)}`);
+        for (const [name, ext] of Object.entries(v)) if (!isObject(ext)) failGltf(`${kat}/${name}`, `expected an object, got ${show(ext)}`);
+      }
+      stack.push({ value: v, at: kat });
+    }
+  }
+}
+
+/**
  * Checks the properties above (the structure, references and accessors were checked by
  * json-validation.ts). `counts` are the lengths of the top-level arrays.
  */
 export function validateGltfProperties(json: Json, counts: { nodes: number; accessors: number }): void {
+  validateExtensionObjects(json);
   list(json, 'materials').forEach((m, i) => validateMaterial(m, pointer('materials', i)));
   list(json, 'samplers').forEach((entry, i) => {
     const at = pointer('samplers', i);
