@@ -7,7 +7,7 @@ import type { EnvSeed } from './corpus-env.ts';
 import type { Json } from './mutate-json.ts';
 import type { Random } from './random.ts';
 import { expandUri, HOSTILE_SOURCES, type UriContext } from './sandbox.ts';
-import type { LoaderCase } from './cases-gltf.ts';
+import { fuzzPolicy, type LoaderCase } from './cases-gltf.ts';
 
 const HDR_RESOLUTIONS = ['-Y 100000000000000000000 +X 8', '-Y 8 +X 100000000000000000000', '-Y 0 +X 8', '-Y 8192 +X 8193', '-Y 65536 +X 65536', '+X 8 -Y 4', '-Y -4 +X 8', '-Y 4 +X 8 junk', '-Y 4294967297 +X 1', '-Y 4096 +X 8192'];
 
@@ -83,7 +83,7 @@ export function makeEnvCase(corpus: readonly EnvSeed[], random: Random, context:
     bytes = m.bytes;
     notes.push(m.note);
   }
-  const options: Record<string, Json> = { negativeTexels: 'zero', resourcePolicy: { maxDecodedBytes: 256 * 2 ** 20 } };
+  const options: Record<string, Json> = { negativeTexels: 'zero', resourcePolicy: fuzzPolicy(random, context) };
   if (random.chance(0.1)) {
     const key = random.pick(['intensity', 'rotationRadians', 'negativeTexels', 'field', 'unknown', 'resourcePolicy', 'EXRLoader', 'onNegativeTexels']);
     const value = random.pick<Json>([-1, 0, 1e30, 1.5, 'zero', 'clamp', '', null, {}, [], true, { maxDecodedBytes: 1024 }, { maxResourceBytes: 10 }, { root: '/nonexistent' }]);

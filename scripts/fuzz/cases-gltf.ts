@@ -110,6 +110,17 @@ function mutateGlb(glb: Uint8Array, random: Random): { bytes: Uint8Array; note: 
   return { bytes: out, note: `GLB u32 at ${field} = ${value}` };
 }
 
+/**
+ * The policy a case loads under: a 256 MiB budget (so that a legal but large decode stays far below
+ * the worker's memory limit) and time limits under the case's deadline; sometimes the allowed
+ * server's origin.
+ */
+export function fuzzPolicy(random: Random, context: UriContext): Record<string, Json> {
+  const policy: Record<string, Json> = { maxDecodedBytes: 256 * 2 ** 20, fetchTimeoutMs: random.pick([1000, 3000]), decodeTimeoutMs: 5000 };
+  if (random.chance(0.15)) policy.allowedOrigins = [context.servers.allowed];
+  return policy;
+}
+
 export function makeGltfCase(corpus: readonly GltfSeed[], random: Random, context: UriContext & { hasFifo: boolean }): LoaderCase {
   const seed = random.pick(corpus);
   let doc = structuredClone(seed.json) as Doc;
@@ -207,9 +218,7 @@ export function makeGltfCase(corpus: readonly GltfSeed[], random: Random, contex
     }
   }
   // The resource policy: mostly the default; sometimes the allowed server, a short timeout, a small budget.
-  const policy: Record<string, Json> = { maxDecodedBytes: 256 * 2 ** 20 };
-  if (random.chance(0.15)) policy.allowedOrigins = [context.servers.allowed];
-  if (random.chance(0.15)) policy.fetchTimeoutMs = 1500;
+  const policy = fuzzPolicy(random, context);
   if (random.chance(0.05)) policy.maxDecodedBytes = random.pick([1024, 65536]);
   if (random.chance(0.03)) policy.maxImageDimension = random.pick([1, 2, 3]);
   if (options.resourcePolicy === undefined) options.resourcePolicy = policy;

@@ -7,7 +7,7 @@ import { encode as encodePng } from 'fast-png';
 import { packageGltf } from './container.ts';
 import type { EnvSeed } from './corpus-env.ts';
 import type { GltfSeed } from './corpus-gltf.ts';
-import type { LoaderCase } from './cases-gltf.ts';
+import { fuzzPolicy, type LoaderCase } from './cases-gltf.ts';
 import { mutateJson, setAt, type Json } from './mutate-json.ts';
 import type { Random } from './random.ts';
 import { expandUri, HOSTILE_URIS, type UriContext } from './sandbox.ts';
@@ -68,8 +68,5 @@ export function makeSceneCase(gltf: readonly GltfSeed[], env: readonly EnvSeed[]
     notes.push('text truncated');
   }
   files['scene.json'] = new TextEncoder().encode(text);
-  const policy: Record<string, Json> = { maxDecodedBytes: 256 * 2 ** 20 };
-  if (random.chance(0.15)) policy.allowedOrigins = [context.servers.allowed];
-  if (random.chance(0.15)) policy.fetchTimeoutMs = 1500;
-  return { files, source: { kind: 'path', file: 'scene.json' }, options: { resourcePolicy: policy }, abort: random.chance(0.02), notes };
+  return { files, source: { kind: 'path', file: 'scene.json' }, options: { resourcePolicy: fuzzPolicy(random, context) }, abort: random.chance(0.02), notes };
 }

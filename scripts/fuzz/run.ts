@@ -120,7 +120,7 @@ interface Slot {
   id: number;
   child: ChildProcess | undefined;
   sandbox: Pick<WorkerSandbox, 'canaryFiles'>;
-  busy: { kind: CaseKind; index: number; started: number; timer: NodeJS.Timeout; memory: NodeJS.Timeout } | undefined;
+  busy: { kind: CaseKind; index: number; started: number; timer: NodeJS.Timeout; memory: NodeJS.Timeout; allowedOrigins: string[] } | undefined;
   stderr: string;
 }
 
@@ -169,7 +169,7 @@ export async function runFuzz(config: FuzzConfig): Promise<FuzzReport> {
         const mb = residentMb(slot.child?.pid);
         if (mb > config.memoryMb) fail(slot, 'oom', `resident memory ${mb.toFixed(0)} MiB over the ${config.memoryMb} MiB limit`);
       }, 100);
-      slot.busy = { ...job, started: performance.now(), timer, memory };
+      slot.busy = { ...job, started: performance.now(), timer, memory, allowedOrigins: [] };
       slot.child!.send({ type: 'case', ...job });
     };
     const fail = (slot: Slot, status: 'hang' | 'oom' | 'crash', message: string): void => {
@@ -179,7 +179,15 @@ export async function runFuzz(config: FuzzConfig): Promise<FuzzReport> {
         clearTimeout(busy.timer);
         clearInterval(busy.memory);
         const oom = /heap out of memory|Allocation failed|OOM/i.test(slot.stderr);
-        const outcome: Outcome = { kind: busy.kind, index: busy.index, status: status === 'crash' && oom ? 'oom' : status, ms: performance.now() - busy.started, notes: [], message: `${message}${slot.stderr ? `; stderr: ${slot.stderr.slice(-400)}` : ''}` };
+        const outcome: Outcome = {
+          kind: busy.kind,
+          index: busy.index,
+          status: status === 'crash' && oom ? 'oom' : status,
+          ms: performance.now() - busy.started,
+          notes: [],
+          message: `${message}${slot.stderr ? `; stderr: ${slot.stderr.slice(-400)}` : ''}`,
+          allowedOrigins: busy.allowedOrigins,
+        };
         record(checkEscapes(slot, outcome));
       }
       const dying = slot.child;
@@ -199,8 +207,12 @@ export async function runFuzz(config: FuzzConfig): Promise<FuzzReport> {
       child.stderr!.on('data', (d: Buffer) => {
         slot.stderr = (slot.stderr + d.toString()).slice(-4000);
       });
-      child.on('message', (message: { type: string; outcome?: Outcome; message?: string }) => {
+      child.on('message', (message: { type: string; outcome?: Outcome; message?: string; allowedOrigins?: string[] }) => {
         if (message.type === 'ready') return next(slot);
+        if (message.type === 'started') {
+          if (slot.busy) slot.busy.allowedOrigins = message.allowedOrigins ?? [];
+          return;
+        }
         if (message.type === 'fatal') return fail(slot, 'crash', message.message ?? 'worker failed');
         if (message.type !== 'result' || slot.busy === undefined) return;
         clearTimeout(slot.busy.timer);

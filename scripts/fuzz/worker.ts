@@ -151,6 +151,10 @@ process.on('message', (message: { type: string; kind?: CaseKind; index?: number 
     const index = message.index!;
     const started = performance.now();
     const generated = makeCase(kind, index, init.seed, corpora, { canary: sandbox.canary, asset: sandbox.asset, servers: init.servers, caseTag: `c-${kind}-${index}`, hasFifo: sandbox.hasFifo });
+    // What the case may contact, told before it runs (a case that hangs reports nothing after).
+    const policy = 'options' in generated && (generated.options as Record<string, unknown>).resourcePolicy;
+    const allowed = policy !== null && typeof policy === 'object' && Array.isArray((policy as { allowedOrigins?: unknown }).allowedOrigins) ? (policy as { allowedOrigins: string[] }).allowedOrigins : [];
+    send({ type: 'started', kind, index, allowedOrigins: allowed });
     const result = kind === 'options' ? await runOptions(generated as OptionsCase) : await runLoader(kind, generated as LoaderCase);
     const polluted = Object.prototype.hasOwnProperty.call(Object.prototype, 'polluted');
     if (polluted) delete (Object.prototype as Record<string, unknown>).polluted;

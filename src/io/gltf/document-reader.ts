@@ -12,7 +12,7 @@ import { locateCompressionFault } from './compression-faults.ts';
 import { failGltf, gltfError, pointer } from './errors.ts';
 import { IGNORED_OPTIONAL_EXTENSIONS, UNSUPPORTED_TEXTURE_EXTENSIONS } from './extensions.ts';
 import { isGlb, parseGlb } from './glb-container.ts';
-import { isObject, validateGltfJson } from './json-validation.ts';
+import { isMeshoptFallback, isObject, validateGltfJson } from './json-validation.ts';
 import { budgetOf, derivePolicy, locateSource, readSource, type DecodeBudget, type ResolvedResourcePolicy } from '../resource-policy.ts';
 import { JSON_BYTES_PER_VALUE, MAX_JSON_DEPTH, scanJson } from '../json-scan.ts';
 import { chargeGeometry, chargeImages } from './decode-budget.ts';
@@ -134,7 +134,7 @@ async function loadResources(
   const buffers = await Promise.all(
     bufferDefs.map(async (buffer, i): Promise<Uint8Array | undefined> => {
       const at = pointer('buffers', i);
-      const meshoptFallback = isObject(buffer.extensions) && isObject(buffer.extensions.EXT_meshopt_compression) && buffer.extensions.EXT_meshopt_compression.fallback === true;
+      const meshoptFallback = isMeshoptFallback(json, buffer);
       let data: Uint8Array;
       if (typeof buffer.uri === 'string') {
         if (meshoptFallback && !buffer.uri.startsWith('data:')) return undefined; // never read: meshopt decodes instead

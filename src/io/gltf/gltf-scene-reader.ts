@@ -221,7 +221,11 @@ export async function readGltfScene(source: GltfSource, rawOptions: GltfLoadOpti
           warnings.push(`${at}: no TEXCOORD_${texCoord} for MikkTSpace tangents; the normal map cannot be applied`);
         } else {
           if (streams.normals === undefined) warnings.push(`${at}: flat normals computed for MikkTSpace tangents (the primitive has no NORMAL)`);
-          streams = await withMikkTSpaceTangents(streams, texCoord);
+          try {
+            streams = await withMikkTSpaceTangents(streams, texCoord);
+          } catch (error) {
+            failGltf(at, `MikkTSpace tangents could not be generated for the normal map (${(error as Error).message})`, error);
+          }
         }
       }
       const name = mesh.getName();

@@ -15,6 +15,12 @@ type Json = Record<string, unknown>;
 const COMPONENT_SIZES: Readonly<Record<number, number>> = { 5120: 1, 5121: 1, 5122: 2, 5123: 2, 5125: 4, 5126: 4, 5131: 2, 5130: 8 };
 const TYPE_SIZES: Readonly<Record<string, number>> = { SCALAR: 1, VEC2: 2, VEC3: 3, VEC4: 4, MAT2: 4, MAT3: 9, MAT4: 16 };
 
+/** A buffer the loader never reads: an EXT_meshopt_compression fallback, in an asset that uses the extension. */
+export function isMeshoptFallback(json: Json, buffer: unknown): boolean {
+  const used = Array.isArray(json.extensionsUsed) && json.extensionsUsed.includes('EXT_meshopt_compression');
+  return used && isObject(buffer) && isObject(buffer.extensions) && isObject(buffer.extensions.EXT_meshopt_compression) && buffer.extensions.EXT_meshopt_compression.fallback === true;
+}
+
 export function isObject(value: unknown): value is Json {
   return typeof value === 'object' && value !== null && !Array.isArray(value);
 }
@@ -68,10 +74,16 @@ export function validateGltfJson(value: unknown): ValidatedJson {
   if (typeof asset.version !== 'string' || !/^2\.\d+$/.test(asset.version)) failGltf('/asset/version', `expected a glTF 2.x version string, got ${JSON.stringify(asset.version)}`);
   if (asset.minVersion !== undefined && asset.minVersion !== '2.0') failGltf('/asset/minVersion', `this loader reads glTF 2.0, the asset needs ${JSON.stringify(asset.minVersion)}`);
 
+  const used = list(json, 'extensionsUsed');
+  used.forEach((name, i) => {
+    if (typeof name !== 'string') failGltf(pointer('extensionsUsed', i), 'expected an extension name');
+  });
   const required = list(json, 'extensionsRequired');
   required.forEach((name, i) => {
     if (typeof name !== 'string') failGltf(pointer('extensionsRequired', i), 'expected an extension name');
     if (!SUPPORTED_EXTENSIONS.has(name)) failGltf(pointer('extensionsRequired', i), `required extension ${name} is not supported`);
+    // glTF 2.0 section 3.12: every required extension is also listed in extensionsUsed.
+    if (!used.includes(name)) failGltf(pointer('extensionsRequired', i), `${name} is required but not listed in extensionsUsed`);
   });
 
   const counts = {
@@ -96,7 +108,7 @@ export function validateGltfJson(value: unknown): ValidatedJson {
   });
 
   // EXT_meshopt_compression fallback buffers carry no data: only compressed views may use them.
-  const fallbacks = list(json, 'buffers').map((b) => isObject(b) && isObject(b.extensions) && isObject(b.extensions.EXT_meshopt_compression) && b.extensions.EXT_meshopt_compression.fallback === true);
+  const fallbacks = list(json, 'buffers').map((b) => isMeshoptFallback(json, b));
   list(json, 'bufferViews').forEach((entry, i) => validateBufferView(entry, i, bufferByteLengths, counts.buffers, fallbacks));
   const views = list(json, 'bufferViews') as Json[];
   list(json, 'accessors').forEach((entry, i) => validateAccessor(entry, i, views));
@@ -108,6 +120,9 @@ export function validateGltfJson(value: unknown): ValidatedJson {
   list(json, 'textures').forEach((entry, i) => {
     const texture = object(entry, pointer('textures', i));
     if (texture.source !== undefined) reference(texture.source, pointer('textures', i, 'source'), counts.images, 'images');
+    // glTF 2.0 section 5.29: without `source` an extension must supply the image.
+    const extensionSource = isObject(texture.extensions) && Object.values(texture.extensions).some((ext) => isObject(ext) && ext.source !== undefined);
+    if (texture.source === undefined && !extensionSource) failGltf(pointer('textures', i), 'the texture has no source image (no source, and no extension that supplies one)');
     if (texture.sampler !== undefined) reference(texture.sampler, pointer('textures', i, 'sampler'), counts.samplers, 'samplers');
     if (isObject(texture.extensions)) {
       for (const [name, ext] of Object.entries(texture.extensions)) {

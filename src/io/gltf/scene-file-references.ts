@@ -20,6 +20,10 @@
  */
 import { GpuRendererError, isGpuRendererError } from '../../errors/gpu-renderer-error.ts';
 import { describe } from '../../errors/validate.ts';
+import { validateLights } from '../../lighting/lights.ts';
+import { normalizeWavefrontCamera } from '../../pathtracer/camera.ts';
+import { affineFromColumnMajor } from '../../scene/instance.ts';
+import { maxCoordinateMagnitude } from '../../scene/limits.ts';
 import type { WavefrontMaterialInput, WavefrontPunctualLightInput, WavefrontSceneDescription } from '../../scene/types.ts';
 import { loadGltfScene, type GltfLoadOptions, type GltfScene } from './load-gltf-scene.ts';
 import { determinant3, IDENTITY, multiply, normalize, transformDirection, transformPoint } from './matrix.ts';
@@ -65,6 +69,7 @@ export function parseGltfReferences(value: unknown, field = 'gltf'): GltfSceneRe
       if (!Array.isArray(t) || t.length !== 16) invalid(`${at}.transform`, `expected 16 numbers (column-major 4x4), got ${describe(t)}`);
       t.forEach((x, k) => {
         if (typeof x !== 'number' || !Number.isFinite(x)) invalid(`${at}.transform[${k}]`, `expected a finite number, got ${describe(x)}`);
+        if (Math.abs(x) > maxCoordinateMagnitude) invalid(`${at}.transform[${k}]`, `|${x}| exceeds the largest supported coordinate ${maxCoordinateMagnitude}`);
       });
       if (t[3] !== 0 || t[7] !== 0 || t[11] !== 0 || t[15] !== 1 || determinant3(t) === 0) invalid(`${at}.transform`, 'expected an affine, invertible matrix (last row 0, 0, 0, 1)');
       ref.transform = t as number[];
@@ -141,14 +146,30 @@ export async function resolveGltfReferences(
     out.textures!.push(...gltf.textures.map((t) => ({ ...t, image: typeof t.image === 'number' ? t.image + imageOffset : t.image })));
     out.materials!.push(...gltf.materials.map((material) => offsetTextureRefs(material, textureOffset)));
     out.meshes!.push(...gltf.meshes.map((mesh) => ({ ...mesh, material: typeof mesh.material === 'number' ? mesh.material + materialOffset : mesh.material })));
-    out.instances.push(...gltf.instances.map((inst) => ({ ...inst, mesh: inst.mesh + meshOffset, transform: multiply(m, inst.transform ?? IDENTITY), ...(inst.material === undefined ? {} : { material: inst.material + materialOffset }) })));
-    out.lights!.push(...gltf.lights.map((light) => placeLight(light, m)));
-    if (out.camera === undefined) {
-      const c = gltf.camera;
-      out.camera = { ...c, position: transformPoint(m, c.position), target: transformPoint(m, c.target), up: normalize(transformDirection(m, c.up ?? [0, 1, 0])) };
-    }
+    const placed = gltf.instances.map((inst) => ({ ...inst, mesh: inst.mesh + meshOffset, transform: multiply(m, inst.transform ?? IDENTITY), ...(inst.material === undefined ? {} : { material: inst.material + materialOffset }) }));
+    const lights = gltf.lights.map((light) => placeLight(light, m));
+    const camera = out.camera === undefined ? { ...gltf.camera, position: transformPoint(m, gltf.camera.position), target: transformPoint(m, gltf.camera.target), up: normalize(transformDirection(m, gltf.camera.up ?? [0, 1, 0])) } : undefined;
+    checkPlacement(placed, lights, camera, `gltf[${i}].transform`);
+    out.instances.push(...placed);
+    out.lights!.push(...lights);
+    if (camera !== undefined) out.camera = camera;
   }
   return { scene: out, warnings };
+}
+
+/**
+ * The asset as `transform` places it must stay within what the renderer supports (its checks on
+ * instances, lights and the camera): a fault is the reference's transform, named as such.
+ */
+function checkPlacement(instances: WavefrontSceneDescription['instances'] & object, lights: WavefrontPunctualLightInput[], camera: WavefrontSceneDescription['camera'], field: string): void {
+  try {
+    instances.forEach((inst, k) => affineFromColumnMajor(inst.transform ?? IDENTITY, `instances[${k}].transform`));
+    validateLights(lights);
+    if (camera !== undefined) normalizeWavefrontCamera(camera);
+  } catch (error) {
+    if (!isGpuRendererError(error)) throw error;
+    invalid(field, `places the asset where the renderer cannot use it (${error.message})`);
+  }
 }
 
 function offsetTextureRefs(material: WavefrontMaterialInput, offset: number): WavefrontMaterialInput {
