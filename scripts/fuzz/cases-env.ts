@@ -98,5 +98,9 @@ export function makeEnvCase(corpus: readonly EnvSeed[], random: Random, context:
   else if (how < 5) source = { kind: 'raw', value: expandUri(random.pick(HOSTILE_SOURCES), context) };
   else source = { kind: 'path', file };
   if (source.kind !== 'path') notes.push(`source ${source.kind === 'raw' ? source.value : source.kind}`);
+  if (bytes[0] === 0x23 && random.chance(0.25)) {
+    notes.push('decodeHdr');
+    return { files: {}, source: { kind: 'bytes', bytes }, options: {}, abort: false, notes, decoder: 'decodeHdr' };
+  }
   return { files: { [file]: bytes }, source, options, abort: random.chance(0.02), notes };
 }

@@ -19,6 +19,8 @@ export interface LoaderCase {
   options: Record<string, Json>;
   abort: boolean;
   notes: string[];
+  /** Environment cases: decode with the post-processing reader (`decodeHdr`) instead of loadEnvironmentMap. */
+  decoder?: 'decodeHdr';
 }
 
 type Doc = Record<string, Json>;

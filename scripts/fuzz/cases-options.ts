@@ -76,7 +76,8 @@ export function makeOptionsCase(random: Random): OptionsCase {
   const base = { ...createCornellBoxScene(), width: 8, height: 8, samplesPerPixel: 1, maxDepth: 2 } as unknown as Record<string, Json>;
   let options: Record<string, unknown> = base;
   const notes: string[] = [];
-  const rounds = 1 + (random.chance(0.5) ? 0 : random.int(3));
+  // A third of the sets stay valid, so that the calls after creation are reached.
+  const rounds = random.chance(0.33) ? 0 : 1 + (random.chance(0.5) ? 0 : random.int(3));
   for (let r = 0; r < rounds; r++) {
     if (random.chance(0.35)) {
       const m = mutateJson(options as Json, random);
@@ -92,7 +93,7 @@ export function makeOptionsCase(random: Random): OptionsCase {
     }
   }
   const calls: OptionsCase['calls'] = [];
-  const callCount = random.int(4);
+  const callCount = rounds === 0 ? 1 + random.int(4) : random.int(4);
   for (let c = 0; c < callCount; c++) {
     const method = random.pick(['updateCamera', 'renderFrame', 'readAov', 'renderOnce'] as const);
     const argument = method === 'updateCamera' ? random.pick(CAMERAS) : method === 'readAov' ? random.pick(AOV_NAMES) : random.pick(FRAME_OPTIONS);

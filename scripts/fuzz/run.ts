@@ -256,7 +256,16 @@ async function writeReport(config: FuzzConfig, outcomes: Outcome[], failures: Ou
   const groups = new Map<string, Outcome[]>();
   for (const o of outcomes.filter((x) => x.status !== 'ok' && x.status !== 'typed' && x.status !== 'aborted')) groups.set(signature(o), [...(groups.get(signature(o)) ?? []), o]);
   const distinct = [...groups.entries()].map(([sig, list]) => ({ signature: sig, count: list.length, examples: list.slice(0, 3) }));
-  writeFileSync(join(out, 'report.json'), JSON.stringify({ seed: config.seed, counts: config.counts, table, failures, distinct, unattributedRequests: unattributed }, null, 2));
+  // Where the typed errors point (indices folded): what the mutants reached.
+  const typedFields: Record<string, { count: number; example: string }> = {};
+  for (const o of outcomes) {
+    if (o.status !== 'typed') continue;
+    const key = `${o.kind} ${o.code} ${(o.field ?? '').replace(/\d+/g, 'i')}`;
+    typedFields[key] ??= { count: 0, example: `${o.message ?? ''} [${o.notes.join('; ')}]`.slice(0, 300) };
+    typedFields[key].count++;
+  }
+  const typed = Object.fromEntries(Object.entries(typedFields).sort((a, b) => b[1].count - a[1].count));
+  writeFileSync(join(out, 'report.json'), JSON.stringify({ seed: config.seed, counts: config.counts, table, failures, distinct, unattributedRequests: unattributed, typed }, null, 2));
   if (failures.length === 0) return;
   const corpora = await buildCorpora();
   for (const f of failures.slice(0, 50)) {

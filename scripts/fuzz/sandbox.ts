@@ -74,7 +74,7 @@ export function createWorkerSandbox(runDir: string, worker: number): WorkerSandb
   symlinkSync('../canary/secret.bin', join(asset, 'link-out'));
   symlinkSync('../canary', join(asset, 'link-dir'));
   symlinkSync('/dev/zero', join(asset, 'link-dev'));
-  let hasFifo = false;
+  let hasFifo: boolean;
   try {
     execFileSync('mkfifo', [join(asset, 'fifo')]);
     hasFifo = true;

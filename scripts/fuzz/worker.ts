@@ -11,6 +11,7 @@ import { acquireGpuDevice } from '../../src/gpu/acquire-device.ts';
 import { loadGltfScene } from '../../src/io/gltf/load-gltf-scene.ts';
 import { loadSceneFile } from '../../src/io/scene-file-loader.ts';
 import { loadEnvironmentMap } from '../../src/lighting/load-environment-map.ts';
+import { decodeHdr } from '../../src/post/files/hdr-decode.ts';
 import { createWavefrontPathTracingComputeConfig } from '../../src/pathtracer/config.ts';
 import { createWavefrontPathTracingComputeRenderer } from '../../src/pathtracer/renderer.ts';
 import { prepareScene } from '../../src/pathtracer/scene/prepare-scene.ts';
@@ -40,7 +41,11 @@ const send = (message: unknown): void => void process.send!(message);
 function describeError(error: unknown): Pick<Outcome, 'status' | 'code' | 'field' | 'message' | 'errorName' | 'cause' | 'stack'> {
   if (error instanceof GpuRendererError) {
     const cause = error.cause;
-    const native = cause instanceof TypeError || cause instanceof RangeError || cause instanceof ReferenceError;
+    // An internal fault caught at the boundary (a dependency dereferencing undefined, a stack
+    // overflow), as opposed to a platform API refusing data by design (TextDecoder's fatal mode,
+    // DataView bounds), which is how decoders are meant to report malformed input.
+    const native = (cause instanceof TypeError || cause instanceof RangeError || cause instanceof ReferenceError) &&
+      /Cannot read|Cannot set|is not a function|is not iterable|is not defined|is not a constructor|Maximum call stack|Invalid (typed )?array length|allocation failed|of undefined|of null/i.test(cause.message);
     return {
       status: native ? 'wrapped' : 'typed',
       code: error.code,
@@ -96,7 +101,8 @@ async function runLoader(kind: CaseKind, c: LoaderCase): Promise<Omit<Outcome, '
     if (kind === 'gltf') result = { ...(await loadGltfScene(source as string, options)) };
     else if (kind === 'scene') result = (await loadSceneFile(source as string, options)).scene;
     else {
-      await loadEnvironmentMap(source as string, options);
+      if (c.decoder === 'decodeHdr') decodeHdr(source as Uint8Array);
+      else await loadEnvironmentMap(source as string, options);
       return { status: 'ok', allowedOrigins };
     }
     const late = await rendererCheck(result);

@@ -12,6 +12,9 @@
  * decodes on its own thread (after the structural validation of openexr-header.ts).
  */
 
+import type * as NodeModule from 'node:module';
+import type * as NodeUrl from 'node:url';
+
 /** What EXRLoader.parse returns, as the worker posts it back. */
 export interface ParsedExr {
   width: number;
@@ -68,8 +71,8 @@ function resolveLoaderUrl(): Promise<string | undefined> {
     try {
       const moduleSpecifier = 'node:module';
       const urlSpecifier = 'node:url';
-      const { createRequire } = (await import(moduleSpecifier)) as typeof import('node:module');
-      const { pathToFileURL, fileURLToPath } = (await import(urlSpecifier)) as typeof import('node:url');
+      const { createRequire } = (await import(moduleSpecifier)) as typeof NodeModule;
+      const { pathToFileURL, fileURLToPath } = (await import(urlSpecifier)) as typeof NodeUrl;
       const here = ownFile();
       const from = here === undefined ? `${process.cwd()}/` : here.startsWith('file:') ? fileURLToPath(here) : here;
       return pathToFileURL(createRequire(from).resolve('three/examples/jsm/loaders/EXRLoader.js')).href;
