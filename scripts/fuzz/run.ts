@@ -155,9 +155,17 @@ export async function runFuzz(config: FuzzConfig): Promise<FuzzReport> {
       }
       return escapes.length === 0 ? outcome : { ...outcome, status: 'escape', escapes };
     };
+    let done = false;
     const finish = (): void => {
-      if (slots.some((s) => s.busy !== undefined) || queue.length > 0) return;
-      for (const s of slots) s.child?.kill('SIGKILL');
+      if (done || slots.some((s) => s.busy !== undefined) || queue.length > 0) return;
+      done = true;
+      for (const s of slots) {
+        const child = s.child;
+        s.child = undefined;
+        child?.removeAllListeners();
+        child?.stderr?.destroy();
+        child?.kill('SIGKILL');
+      }
       resolveAll();
     };
     const next = (slot: Slot): void => {
@@ -197,6 +205,7 @@ export async function runFuzz(config: FuzzConfig): Promise<FuzzReport> {
       spawn(slot);
     };
     const spawn = (slot: Slot): void => {
+      if (done) return;
       slot.stderr = '';
       const child = fork(workerScript, [], {
         execArgv: [`--max-old-space-size=${Math.floor(config.memoryMb * 0.75)}`, '--disable-warning=ExperimentalWarning'],
