@@ -56,7 +56,7 @@ test('references inside the folder load, through subfolders, encoded names and i
       const path = join(f.asset, 'scene.gltf');
       writeFileSync(path, JSON.stringify(triangleGltf(uri)));
       const scene = await loadGltfScene(path);
-      assert.deepEqual([...scene.meshes[0]!.positions], [0, 0, 0, 1, 0, 0, 0, 1, 0], uri);
+      assert.deepEqual(Array.from(scene.meshes[0]!.positions), [0, 0, 0, 1, 0, 0, 0, 1, 0], uri);
     }
   } finally {
     f.cleanup();
