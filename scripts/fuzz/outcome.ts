@@ -36,10 +36,9 @@ export interface Outcome {
 
 export const STATUSES: readonly Status[] = ['ok', 'typed', 'wrapped', 'aborted', 'late', 'limit', 'untyped', 'polluted', 'hang', 'oom', 'crash', 'escape'];
 
-/** Outcomes that fail the run. `late` fails for glTF (faults must be refused at load with the JSON pointer). */
+/** Outcomes that fail the run; `late` too (a loader must refuse what the renderer would, naming the asset's field). */
 export function isFailure(outcome: Pick<Outcome, 'kind' | 'status'>): boolean {
-  if (outcome.status === 'late') return outcome.kind === 'gltf';
-  return outcome.status === 'untyped' || outcome.status === 'polluted' || outcome.status === 'hang' || outcome.status === 'oom' || outcome.status === 'crash' || outcome.status === 'escape';
+  return outcome.status === 'late' || outcome.status === 'untyped' || outcome.status === 'polluted' || outcome.status === 'hang' || outcome.status === 'oom' || outcome.status === 'crash' || outcome.status === 'escape';
 }
 
 /** A short signature grouping outcomes that are the same fault. */

@@ -3,7 +3,8 @@
  * processes with time and memory limits, with escape detection (canary files outside each asset
  * folder, a local HTTP server no case may contact). Prints a summary table; writes a JSON report
  * and every failing case (regenerated from its seed) under --out. Exit status 1 on any untyped
- * error, hang, out-of-memory, crash, escape or prototype pollution, or a glTF fault refused late.
+ * error, hang, out-of-memory, crash, escape or prototype pollution, or a fault the renderer refuses
+ * after a loader accepted it.
  *
  *   npm run fuzz                                    # the full run: 5000 glTF, 500 scene, 500 env, 500 option sets
  *   npm run fuzz -- --gltf 200 --env 50 --options 0 # a shorter run

@@ -13,6 +13,7 @@ import { loadEnvironmentMap } from '../lighting/load-environment-map.ts';
 import { validateLights } from '../lighting/lights.ts';
 import { normalizeWavefrontCamera } from '../pathtracer/camera.ts';
 import { normalizeWavefrontScene } from '../scene/normalize-scene.ts';
+import { validateTextures } from '../materials/textures/texture-input.ts';
 import { decodeImage } from './gltf/image-decoding.ts';
 import { resolveGltfReferences } from './gltf/scene-file-references.ts';
 import { checkImageHeader } from './image-headers.ts';
@@ -67,7 +68,9 @@ export async function resolveSceneFile(file: WavefrontSceneFile, options: SceneF
         ...(environment.rotationDegrees !== undefined ? { rotationRadians: (environment.rotationDegrees * Math.PI) / 180 } : {}),
       });
     } catch (error) {
-      throw asSceneFileError(error, field);
+      // The map's own options are the file's intensity and rotationDegrees.
+      const inner = isGpuRendererError(error) ? (error.field ?? '') : '';
+      throw asSceneFileError(error, inner.endsWith('.intensity') ? 'environment.intensity' : inner.endsWith('.rotationRadians') ? 'environment.rotationDegrees' : field);
     }
   } else if (environment !== undefined) {
     scene.environment = environment;
@@ -107,6 +110,7 @@ export async function resolveSceneFile(file: WavefrontSceneFile, options: SceneF
 function acceptSceneFile(scene: WavefrontResolvedScene): void {
   try {
     normalizeWavefrontScene(scene);
+    validateTextures(scene.textures, scene.images);
     validateLights(scene.lights);
     if (scene.camera !== undefined) normalizeWavefrontCamera(scene.camera);
   } catch (error) {

@@ -1,7 +1,7 @@
 // CI's short pass of `npm run fuzz` (scripts/fuzz): a few hundred mutated glTF assets, scene files,
 // environment maps and renderer option sets in child processes with time and memory limits and
 // escape detection. Every outcome must be a load or a typed error: no untyped error, hang,
-// out-of-memory, crash, escape or prototype pollution, and no glTF fault refused late.
+// out-of-memory, crash, escape or prototype pollution, and no fault left for the renderer to refuse.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { runFuzz } from '../../scripts/fuzz/run.ts';

@@ -132,6 +132,13 @@ test('scene files are refused at load by the renderer validation, and references
     await refused(loadSceneFile(path), 'INVALID_SCENE_FILE', 'gltf[0].transform[0]', /largest supported coordinate/);
     writeFileSync(path, JSON.stringify({ gltf: [{ src: 'tri.gltf', transform: [1e18, 0, 0, 0, 0, 1e18, 0, 0, 0, 0, 1e18, 0, 1e18, 0, 0, 1] }] }));
     await refused(loadSceneFile(path), 'INVALID_SCENE_FILE', 'gltf[0].transform', /places the asset/);
+    // Found by the fuzzer: a texture naming an image the file does not have, and a map intensity
+    // whose product with the brightest texel the renderer cannot hold (1e20).
+    writeFileSync(path, JSON.stringify({ textures: [{ image: 0 }] }));
+    await refused(loadSceneFile(path), 'INVALID_SCENE_FILE', 'textures[0].image', /index into images/);
+    writeFileSync(join(f.asset, 'sky.hdr'), new TextEncoder().encode('#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 1 +X 1\n\x80\x80\x80\x81'));
+    writeFileSync(path, JSON.stringify({ environment: { map: 'sky.hdr', intensity: 1e21 } }));
+    await refused(loadSceneFile(path), 'INVALID_SCENE_FILE', 'environment.intensity', /exceeds the supported/);
   } finally {
     f.cleanup();
   }
