@@ -270,7 +270,9 @@ async function writeReport(config: FuzzConfig, outcomes: Outcome[], failures: Ou
   const typedFields: Record<string, { count: number; example: string }> = {};
   for (const o of outcomes) {
     if (o.status !== 'typed') continue;
-    const key = `${o.kind} ${o.code} ${(o.field ?? '').replace(/\d+/g, 'i')}`;
+    // Errors about the whole document are told apart by their message's first words.
+    const what = o.field ? o.field.replace(/\d+/g, 'i') : `'' ${(o.message ?? '').replace(/^in gltf\[\d+\] \([^)]*\): /, '').split(/[:(]/)[0]!.replace(/\d+/g, 'N').slice(0, 60)}`;
+    const key = `${o.kind} ${o.code} ${what}`;
     typedFields[key] ??= { count: 0, example: `${o.message ?? ''} [${o.notes.join('; ')}]`.slice(0, 300) };
     typedFields[key].count++;
   }
