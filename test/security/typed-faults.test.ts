@@ -70,6 +70,11 @@ test('what @gltf-transform crashed on is refused with the pointer: no texture so
     buffers: [{ byteLength: 36, extensions: { EXT_meshopt_compression: { fallback: true } } }],
   });
   await refused(loadGltfScene(bytes(fallback)), 'INVALID_GLTF', '/bufferViews/0/buffer', /fallback/);
+  const draco = triangleGltf(triangleDataUri, {
+    extensionsUsed: ['KHR_draco_mesh_compression'],
+    meshes: [{ primitives: [{ attributes: { POSITION: 0 }, extensions: { KHR_draco_mesh_compression: { bufferView: 0, attributes: { POSITION: 0, scale: 1 } } } }] }],
+  });
+  await refused(loadGltfScene(bytes(draco)), 'INVALID_GLTF', '/meshes/0/primitives/0/extensions/KHR_draco_mesh_compression/attributes/scale', /no scale attribute/);
 });
 
 test('a normal-mapped primitive whose triangles all have zero area loads (the mikktspace wasm trapped)', async () => {

@@ -290,7 +290,14 @@ function validateMesh(entry: unknown, m: number, json: Json, counts: Record<stri
     const draco = isObject(primitive.extensions) ? primitive.extensions.KHR_draco_mesh_compression : undefined;
     if (draco !== undefined) {
       const dat = `${pat}/extensions/KHR_draco_mesh_compression`;
-      reference(object(draco, dat).bufferView, `${dat}/bufferView`, counts.bufferViews, 'bufferViews');
+      const d = object(draco, dat);
+      reference(d.bufferView, `${dat}/bufferView`, counts.bufferViews, 'bufferViews');
+      // Each compressed attribute decodes into the primitive's accessor of the same semantic
+      // (KHR_draco_mesh_compression, "attributes"): a semantic the primitive lacks has none.
+      for (const [semantic, id] of Object.entries(object(d.attributes, `${dat}/attributes`))) {
+        integer(id, `${dat}/attributes/${semantic}`);
+        if (!(semantic in attributes)) failGltf(`${dat}/attributes/${semantic}`, `the primitive has no ${semantic} attribute to decode into`);
+      }
     }
     const variants = isObject(primitive.extensions) ? primitive.extensions.KHR_materials_variants : undefined;
     if (variants !== undefined) {
