@@ -177,6 +177,7 @@ export function makeGltfCase(corpus: readonly GltfSeed[], random: Random, contex
       let nested: Json = 1;
       for (let k = 0; k < depth; k++) nested = random.chance(0.5) ? [nested] : { a: nested };
       const targets = jsonPaths(doc).filter((p) => getAt(doc, p) !== null && typeof getAt(doc, p) === 'object' && !Array.isArray(getAt(doc, p)));
+      if (targets.length === 0) continue;
       const path = random.pick(targets);
       doc = setAt(doc, [...path, random.pick(['extras', 'extensions', 'KHR_texture_transform'])], random.chance(0.5) ? nested : { KHR_materials_ior: nested }) as Doc;
       notes.push(`${showPath(path)} nested ${depth} deep`);

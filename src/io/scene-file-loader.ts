@@ -10,7 +10,9 @@ import { parseSceneFile, type WavefrontSceneFile } from '../scene/scene-file.ts'
 import type { WavefrontImageInput, WavefrontSceneDescription } from '../scene/types.ts';
 import type { EnvironmentMapInput } from '../lighting/environment-map.ts';
 import { loadEnvironmentMap } from '../lighting/load-environment-map.ts';
-import { validateLights } from '../lighting/lights.ts';
+import { validateLightingOptions } from '../lighting/lighting-options.ts';
+import { requireNumberInRange } from '../errors/validate.ts';
+import { maxRadiance } from '../scene/limits.ts';
 import { normalizeWavefrontCamera } from '../pathtracer/camera.ts';
 import { normalizeWavefrontScene } from '../scene/normalize-scene.ts';
 import { validateTextures } from '../materials/textures/texture-input.ts';
@@ -111,8 +113,9 @@ function acceptSceneFile(scene: WavefrontResolvedScene): void {
   try {
     normalizeWavefrontScene(scene);
     validateTextures(scene.textures, scene.images);
-    validateLights(scene.lights);
+    validateLightingOptions({ lights: scene.lights }, [0, 0, 0]);
     if (scene.camera !== undefined) normalizeWavefrontCamera(scene.camera);
+    scene.environment?.color.forEach((c, i) => requireNumberInRange(c, `environment.color[${i}]`, { min: 0, max: maxRadiance }));
   } catch (error) {
     if (!isGpuRendererError(error)) throw error;
     throw new GpuRendererError('INVALID_SCENE_FILE', error.field && error.message.startsWith(`${error.field}: `) ? error.message.slice(error.field.length + 2) : error.message, {

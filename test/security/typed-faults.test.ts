@@ -44,8 +44,8 @@ test('factors of the wrong type or range are refused at load with the JSON point
 });
 
 test('positions beyond the renderer range and vertex colours above 1 are refused at load, not by the renderer', async () => {
-  const far = new Float32Array([0, 0, 0, 1e19, 0, 0, 0, 1, 0]);
-  const farUri = `data:application/octet-stream;base64,${Buffer.from(far.buffer).toString('base64')}`;
+  const distant = new Float32Array([0, 0, 0, 1e19, 0, 0, 0, 1, 0]);
+  const farUri = `data:application/octet-stream;base64,${Buffer.from(distant.buffer).toString('base64')}`;
   await refused(loadGltfScene(bytes(triangleGltf(farUri))), 'INVALID_GLTF', '/meshes/0/primitives/0/attributes/POSITION', /exceeds the largest supported coordinate/);
   const data = new Float32Array([0, 0, 0, 1, 0, 0, 0, 1, 0, 2, 0, 0, 1, 1, 1, 1, 1, 1]);
   const uri = `data:application/octet-stream;base64,${Buffer.from(data.buffer).toString('base64')}`;
@@ -56,6 +56,14 @@ test('positions beyond the renderer range and vertex colours above 1 are refused
     meshes: [{ primitives: [{ attributes: { POSITION: 0, COLOR_0: 1 } }] }],
   });
   await refused(loadGltfScene(bytes(colors)), 'INVALID_GLTF', '/meshes/0/primitives/0/attributes/COLOR_0', /vertex colours are in \[0, 1\]/);
+  // Found by the fuzzer: a light placed beyond the coordinate range by its node.
+  const far = triangleGltf(triangleDataUri, {
+    extensionsUsed: ['KHR_lights_punctual'],
+    extensions: { KHR_lights_punctual: { lights: [{ type: 'point', intensity: 1 }] } },
+    nodes: [{ mesh: 0 }, { translation: [1e300, 0, 0], extensions: { KHR_lights_punctual: { light: 0 } } }],
+    scenes: [{ nodes: [0, 1] }],
+  });
+  await refused(loadGltfScene(bytes(far)), 'INVALID_GLTF', '/nodes/1/extensions/KHR_lights_punctual', /lights\[0\]\.position/);
 });
 
 test('what @gltf-transform crashed on is refused with the pointer: no texture source, non-object extensions, meshopt fallbacks', async () => {

@@ -1,6 +1,6 @@
 /**
  * The loaded scene through the renderer's own validation (the checks every renderer runs on its
- * scene: scene/normalize-scene.ts, lighting/lights.ts, pathtracer/camera.ts) before it is returned,
+ * scene: scene/normalize-scene.ts, lighting/lighting-options.ts, pathtracer/camera.ts) before it is returned,
  * so that a glTF the renderer would refuse is refused here, at load, as INVALID_GLTF at the JSON
  * pointer of what it came from, instead of later under the renderer's own field names
  * (`meshes[14].colors[3]`). The JSON-level checks catch most faults with a narrower pointer first;
@@ -8,7 +8,7 @@
  * near-singular instance transforms, and whatever the renderer checks in the future).
  */
 import { isGpuRendererError } from '../../errors/gpu-renderer-error.ts';
-import { validateLights } from '../../lighting/lights.ts';
+import { validateLightingOptions } from '../../lighting/lighting-options.ts';
 import { normalizeWavefrontCamera } from '../../pathtracer/camera.ts';
 import { normalizeWavefrontScene } from '../../scene/normalize-scene.ts';
 import type { WavefrontCameraInput, WavefrontSceneDescription } from '../../scene/types.ts';
@@ -57,7 +57,8 @@ export function acceptScene(
 ): void {
   try {
     normalizeWavefrontScene(scene);
-    validateLights(scene.lights);
+    // The lights as the renderer's lighting options take them (types, ranges, magnitudes).
+    validateLightingOptions({ lights: scene.lights }, [0, 0, 0]);
   } catch (error) {
     rethrow(error, origins);
   }

@@ -20,7 +20,7 @@
  */
 import { GpuRendererError, isGpuRendererError } from '../../errors/gpu-renderer-error.ts';
 import { describe } from '../../errors/validate.ts';
-import { validateLights } from '../../lighting/lights.ts';
+import { validateLightingOptions } from '../../lighting/lighting-options.ts';
 import { normalizeWavefrontCamera } from '../../pathtracer/camera.ts';
 import { affineFromColumnMajor } from '../../scene/instance.ts';
 import { maxCoordinateMagnitude } from '../../scene/limits.ts';
@@ -164,7 +164,7 @@ export async function resolveGltfReferences(
 function checkPlacement(instances: WavefrontSceneDescription['instances'] & object, lights: WavefrontPunctualLightInput[], camera: WavefrontSceneDescription['camera'], field: string): void {
   try {
     instances.forEach((inst, k) => affineFromColumnMajor(inst.transform ?? IDENTITY, `instances[${k}].transform`));
-    validateLights(lights);
+    validateLightingOptions({ lights }, [0, 0, 0]);
     if (camera !== undefined) normalizeWavefrontCamera(camera);
   } catch (error) {
     if (!isGpuRendererError(error)) throw error;
