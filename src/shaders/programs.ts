@@ -33,6 +33,7 @@ export const programSpecs = {
   bvhGather: { module: 'package::accel::gpu_build::gather', bindings: 'bvhBuild' },
   bvhFit: { module: 'package::accel::gpu_build::lbvh_fit', bindings: 'bvhBuild' },
   bvhEmit: { module: 'package::accel::gpu_build::lbvh_emit', bindings: 'bvhBuild' },
+  bvhSummary: { module: 'package::accel::gpu_build::lbvh_summary', bindings: 'bvhBuild' },
   bvhRefit: { module: 'package::accel::gpu_build::refit', bindings: 'bvhBuild' },
 } as const satisfies Record<string, ProgramSpec>;
 

@@ -4,7 +4,7 @@ import assert from 'node:assert/strict';
 import { GpuBvhBuilder, type GpuBvhBuildOptions, type GpuBvhBuildResult } from '../../src/accel/gpu-build/gpu-bvh-builder.ts';
 import { computeSahCost } from '../../src/accel/bvh-sah.ts';
 import { packWavefrontTriangles } from '../../src/accel/triangle-packing.ts';
-import { INDEX_NONE } from '../../src/gpu-layout/constants.ts';
+import { INDEX_NONE, PRIMITIVE_SHAPE_BOX, PRIMITIVE_SHAPE_MASK, PRIMITIVE_SHAPE_SPHERE } from '../../src/gpu-layout/constants.ts';
 import { bvhNodeLayout, primitiveLayout } from '../../src/gpu-layout/records.ts';
 import { BufferUsage } from '../../src/gpu/webgpu-constants.ts';
 import { readBuffer, testDevice, uploadBuffer } from '../helpers/gpu.ts';
@@ -29,10 +29,14 @@ export function sourceRecords(triangles: Float32Array): ArrayBuffer {
   return packWavefrontTriangles(triangles, Uint32Array.from({ length: n }, (_, i) => i));
 }
 
-export async function buildOnGpu(triangles: Float32Array, options: GpuBvhBuildOptions = {}): Promise<GpuBuild> {
+export function buildOnGpu(triangles: Float32Array, options: GpuBvhBuildOptions = {}): Promise<GpuBuild> {
+  return buildRecordsOnGpu(sourceRecords(triangles), options);
+}
+
+/** Builds over scene-order primitive records of any shape. */
+export async function buildRecordsOnGpu(source: ArrayBuffer, options: GpuBvhBuildOptions = {}): Promise<GpuBuild> {
   const device = await testDevice();
-  const source = sourceRecords(triangles);
-  const n = triangles.length / 9;
+  const n = source.byteLength / primitiveLayout.size;
   const S = BufferUsage.STORAGE | BufferUsage.COPY_SRC | BufferUsage.COPY_DST;
   const buffers = {
     source: uploadBuffer(device, source),
@@ -59,9 +63,18 @@ export function destroyBuild(b: GpuBuild): void {
   for (const buffer of Object.values(b.buffers)) buffer.destroy();
 }
 
-/** f32 box of one primitive record as the traversal sees it (v0, v0 + e1, v0 + e2). */
+/**
+ * f32 box of one primitive record as the traversal sees it: triangle v0, v0 + e1, v0 + e2; sphere
+ * v0 +- e1.x; box v0 .. e1.
+ */
 export function recordBox(f: Float32Array, slot: number): number[] {
   const o = slot * PW;
+  const kind = new Uint32Array(f.buffer, f.byteOffset, f.length)[o + 11]! & PRIMITIVE_SHAPE_MASK;
+  if (kind === PRIMITIVE_SHAPE_SPHERE) {
+    const r = f[o + 4]!;
+    return [0, 1, 2, 0, 1, 2].map((c, i) => Math.fround(i < 3 ? f[o + c]! - r : f[o + c]! + r));
+  }
+  if (kind === PRIMITIVE_SHAPE_BOX) return [f[o]!, f[o + 1]!, f[o + 2]!, f[o + 4]!, f[o + 5]!, f[o + 6]!];
   const box = [Infinity, Infinity, Infinity, -Infinity, -Infinity, -Infinity];
   for (let v = 0; v < 3; v++) {
     for (let c = 0; c < 3; c++) {

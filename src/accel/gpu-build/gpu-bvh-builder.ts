@@ -19,12 +19,10 @@
 import { GpuRendererError } from '../../errors/gpu-renderer-error.ts';
 import { BufferUsage, MapMode } from '../../gpu/webgpu-constants.ts';
 import { bvhBuildConstants } from '../../gpu-layout/constants.ts';
-import { bvhBuildUniformsLayout, bvhNodeLayout, primitiveLayout } from '../../gpu-layout/records.ts';
-import { writeStruct } from '../../gpu-layout/struct-layout.ts';
-import { dynamicUniformStride } from '../../gpu-layout/constants.ts';
-import type { KernelPipeline } from '../../pathtracer/pipelines.ts';
-import { bvhBuildBindings } from './bindings.ts';
-import { bvhBuildPipelines, type BvhBuildKernel, type BvhBuildPipelines } from './pipelines.ts';
+import { bvhNodeLayout, primitiveLayout } from '../../gpu-layout/records.ts';
+import { DispatchList, PassTimer, runPass, scanSumsWords, type Dispatch } from './dispatch-plan.ts';
+import { bvhBuildPipelines, type BvhBuildPipelines } from './pipelines.ts';
+import { radixSortScratchWords, recordRadixSort, type RadixSortBuffers } from './radix-sort.ts';
 
 const C = bvhBuildConstants;
 
@@ -72,126 +70,6 @@ export interface GpuBvhRefitResult {
   gpuTimeMs: number | null;
 }
 
-/** Workgroups for `items` one-per-thread invocations, folded into rows of at most `maxX`. */
-function grid(workgroups: number, maxX: number): [number, number] {
-  if (workgroups <= maxX) return [Math.max(1, workgroups), 1];
-  return [maxX, Math.ceil(workgroups / maxX)];
-}
-
-/** Element counts of the levels of a device-wide scan over `length` elements (level 0 first). */
-export function scanLevels(length: number): number[] {
-  const levels = [length];
-  while (levels[levels.length - 1]! > C.BVH_SCAN_BLOCK) levels.push(Math.ceil(levels[levels.length - 1]! / C.BVH_SCAN_BLOCK));
-  return levels;
-}
-
-/** Uniform slots (dynamic offsets) of one build: every dispatch names the slot it reads. */
-class UniformSlots {
-  private readonly records: Record<string, number | number[]>[] = [];
-
-  add(values: Record<string, number | number[]>): number {
-    this.records.push(values);
-    return (this.records.length - 1) * dynamicUniformStride;
-  }
-
-  upload(device: GPUDevice, buffer: GPUBuffer | null): GPUBuffer {
-    const data = new ArrayBuffer(Math.max(1, this.records.length) * dynamicUniformStride);
-    this.records.forEach((r, i) => writeStruct(bvhBuildUniformsLayout, new DataView(data, i * dynamicUniformStride, bvhBuildUniformsLayout.size), 0, r));
-    const target = buffer ?? device.createBuffer({ label: 'bvh build uniforms', size: data.byteLength, usage: BufferUsage.UNIFORM | BufferUsage.COPY_DST });
-    device.queue.writeBuffer(target, 0, data);
-    return target;
-  }
-}
-
-type Resources = Partial<Record<keyof typeof bvhBuildBindings, GPUBuffer>>;
-
-function bindGroup(device: GPUDevice, k: KernelPipeline, resources: Resources, label: string): GPUBindGroup {
-  const names = k.bindingsByGroup[0] ?? [];
-  return device.createBindGroup({
-    label,
-    layout: k.groups[0]!,
-    entries: names.map((name) => {
-      const buffer = resources[name as keyof typeof bvhBuildBindings];
-      if (!buffer) throw new Error(`bvh build: no buffer for binding ${name} (${label})`);
-      const binding = bvhBuildBindings[name as keyof typeof bvhBuildBindings].binding;
-      return name === 'bvhBuild' ? { binding, resource: { buffer, size: bvhBuildUniformsLayout.size } } : { binding, resource: { buffer } };
-    }),
-  });
-}
-
-interface Dispatch {
-  kernel: BvhBuildKernel;
-  group: GPUBindGroup;
-  offset: number;
-  workgroups: [number, number];
-}
-
-/** Timestamps around one compute pass, where the device has them. */
-class PassTimer {
-  readonly querySet: GPUQuerySet;
-  private readonly resolve: GPUBuffer;
-  private readonly read: GPUBuffer;
-
-  constructor(device: GPUDevice) {
-    this.querySet = device.createQuerySet({ type: 'timestamp', count: 2 });
-    this.resolve = device.createBuffer({ size: 16, usage: BufferUsage.QUERY_RESOLVE | BufferUsage.COPY_SRC });
-    this.read = device.createBuffer({ size: 16, usage: BufferUsage.MAP_READ | BufferUsage.COPY_DST });
-  }
-
-  writes(): GPUComputePassTimestampWrites {
-    return { querySet: this.querySet, beginningOfPassWriteIndex: 0, endOfPassWriteIndex: 1 };
-  }
-
-  encodeResolve(encoder: GPUCommandEncoder): void {
-    encoder.resolveQuerySet(this.querySet, 0, 2, this.resolve, 0);
-    encoder.copyBufferToBuffer(this.resolve, 0, this.read, 0, 16);
-  }
-
-  async ms(): Promise<number> {
-    await this.read.mapAsync(MapMode.READ);
-    const t = new BigUint64Array(this.read.getMappedRange().slice(0));
-    this.read.unmap();
-    return Number(t[1]! - t[0]!) / 1e6;
-  }
-
-  destroy(): void {
-    this.querySet.destroy();
-    this.resolve.destroy();
-    this.read.destroy();
-  }
-}
-
-/** Encodes the dispatches into one compute pass and submits it after `before` (clears, copies). */
-async function runPass(
-  device: GPUDevice,
-  pipelines: BvhBuildPipelines,
-  dispatches: readonly Dispatch[],
-  before: (encoder: GPUCommandEncoder) => void,
-  after: (encoder: GPUCommandEncoder) => void,
-  timer: PassTimer | null,
-  label: string,
-): Promise<{ wallMs: number; gpuMs: number | null }> {
-  device.pushErrorScope('validation');
-  const encoder = device.createCommandEncoder({ label });
-  before(encoder);
-  const pass = encoder.beginComputePass({ label, ...(timer ? { timestampWrites: timer.writes() } : {}) });
-  for (const d of dispatches) {
-    pass.setPipeline(pipelines[d.kernel].pipeline);
-    pass.setBindGroup(0, d.group, [d.offset]);
-    pass.dispatchWorkgroups(d.workgroups[0], d.workgroups[1]);
-  }
-  pass.end();
-  timer?.encodeResolve(encoder);
-  after(encoder);
-  const started = performance.now();
-  device.queue.submit([encoder.finish()]);
-  const validation = await device.popErrorScope();
-  if (validation) throw new GpuRendererError('GPU_VALIDATION_FAILED', `${label}: ${validation.message}`);
-  await device.queue.onSubmittedWorkDone();
-  const wallMs = performance.now() - started;
-  return { wallMs, gpuMs: timer ? await timer.ms() : null };
-}
-
 function requireBufferSize(buffer: GPUBuffer, bytes: number, what: string): void {
   if (buffer.size < bytes) throw new RangeError(`GpuBvhBuilder: ${what} holds ${buffer.size} bytes, needs ${bytes}`);
 }
@@ -209,12 +87,11 @@ export class GpuBvhBuilder {
   private readonly keyWords: 1 | 2;
   private readonly base: Record<string, number>;
   private readonly timer: PassTimer | null;
-  private readonly maxX: number;
   /** Sorted primitive index per slot: the first half of the sort's ping-pong values. */
   private readonly order: GPUBuffer;
   private readonly summary: GPUBuffer;
   private readonly summaryRead: GPUBuffer;
-  private scratch: { buffers: GPUBuffer[]; uniforms: GPUBuffer; dispatches: Dispatch[]; clears: GPUBuffer[] } | null = null;
+  private scratch: { buffers: GPUBuffer[]; dispatches: Dispatch[]; clears: GPUBuffer[] } | null = null;
   private refitState: { nodeCount: number; uniforms: GPUBuffer; flags: GPUBuffer; dispatches: Dispatch[] } | null = null;
   private built: GpuBvhBuildResult | null = null;
 
@@ -238,7 +115,6 @@ export class GpuBvhBuilder {
     requireBufferSize(buffers.parents, (2 * n - 1) * 4, 'parents');
     this.base = { primitiveCount: n, internalCount: n - 1, keyWords: this.keyWords, maxLeafSize, traversalCost, intersectionCost: 1 };
     this.timer = device.features.has('timestamp-query') ? new PassTimer(device) : null;
-    this.maxX = device.limits.maxComputeWorkgroupsPerDimension;
     this.order = this.storage('bvh sort values', n * 4);
     this.summary = this.storage('bvh build summary', C.BVH_SUMMARY_WORDS * 4, BufferUsage.COPY_SRC);
     this.summaryRead = device.createBuffer({ label: 'bvh build summary read', size: C.BVH_SUMMARY_WORDS * 4, usage: BufferUsage.MAP_READ | BufferUsage.COPY_DST });
@@ -253,104 +129,57 @@ export class GpuBvhBuilder {
     return this.device.createBuffer({ label, size: Math.max(16, Math.ceil(bytes / 4) * 4), usage: BufferUsage.STORAGE | BufferUsage.COPY_DST | extra });
   }
 
-  private groups(items: number): [number, number] {
-    return grid(Math.ceil(items / C.BVH_BUILD_WORKGROUP), this.maxX);
-  }
-
   /** Scratch buffers, bind groups and the dispatch list of a build, made on first use. */
   private plan(): NonNullable<GpuBvhBuilder['scratch']> {
     if (this.scratch) return this.scratch;
-    const device = this.device;
     const n = this.primitiveCount;
     const m = n - 1;
     const kw = this.keyWords;
-    const p = this.pipelines;
     const created: GPUBuffer[] = [];
     const make = (label: string, bytes: number): GPUBuffer => {
       const b = this.storage(label, bytes);
       created.push(b);
       return b;
     };
+    const sortScratch = radixSortScratchWords(n);
+    const sums = scanSumsWords([sortScratch.histogram, Math.max(1, m)]).map((words, l) => make(`bvh scan sums ${l}`, words * 4));
+    const sort: RadixSortBuffers = {
+      keys: make('bvh keys', n * kw * 4),
+      keysScratch: make('bvh keys scratch', n * kw * 4),
+      values: this.order,
+      valuesScratch: make('bvh values scratch', n * 4),
+      histogram: make('bvh sort histogram', sortScratch.histogram * 4),
+      sums,
+    };
     const state = make('bvh centroid bounds', 8 * 4);
-    const keysA = make('bvh keys A', n * kw * 4);
-    const keysB = make('bvh keys B', n * kw * 4);
-    const valuesB = make('bvh values B', n * 4);
-    const blocks = Math.ceil(n / C.BVH_SORT_BLOCK);
-    const histogram = make('bvh sort histogram', C.BVH_SORT_RADIX * blocks * 4);
-    const histogramLevels = scanLevels(C.BVH_SORT_RADIX * blocks);
-    const rankLevels = scanLevels(Math.max(1, m));
-    // sums[l]: the block totals of level l (scanned in place as level l + 1).
-    const sums: GPUBuffer[] = [];
-    for (let l = 0; l < Math.max(histogramLevels.length, rankLevels.length); l++) {
-      const blocksOf = (levels: number[]): number => Math.ceil((levels[l] ?? 0) / C.BVH_SCAN_BLOCK);
-      sums.push(make(`bvh scan sums ${l}`, Math.max(blocksOf(histogramLevels), blocksOf(rankLevels)) * 4));
-    }
     const lbvhNodes = make('lbvh nodes', Math.max(1, m) * 16);
     const lbvhParents = make('lbvh parents', (n + m) * 4);
     const lbvhData = make('lbvh data', Math.max(1, m) * C.BVH_DATA_WORDS * 4);
     const lbvhFlags = make('lbvh flags', Math.max(1, m) * 4);
     const lbvhRank = make('lbvh rank', Math.max(1, m) * 4);
-
-    const slots = new UniformSlots();
-    const base = slots.add(this.base);
-    const dispatches: Dispatch[] = [];
     const { source, primitives, nodes, parents } = this.buffers;
-    const order = this.order;
-    const pending: { kernel: BvhBuildKernel; resources: Resources; offset: number; workgroups: [number, number]; label: string }[] = [];
-    const lbvh: Resources = { lbvhNodes, lbvhParents, lbvhData };
     // Every program binds all the buffers it declares; dispatches override the ones that vary.
-    const defaults: Resources = {
-      buildPrimitives: source, buildState: state, sortKeysIn: keysA, sortValuesIn: order, sortKeysOut: keysA, sortValuesOut: order,
-      gatheredPrimitives: primitives, sortedPrimitives: primitives, ...lbvh, lbvhFlags, lbvhRank, outNodes: nodes, outParents: parents,
-      buildSummary: this.summary,
-    };
-    const add = (kernel: BvhBuildKernel, resources: Resources, offset: number, workgroups: [number, number], label: string): void => {
-      pending.push({ kernel, resources: { ...defaults, ...resources }, offset, workgroups, label });
-    };
-    const scan = (data: GPUBuffer, levels: number[], label: string): void => {
-      const offsets = levels.map((length) => slots.add({ ...this.base, scanLength: length }));
-      const levelData = (l: number): GPUBuffer => (l === 0 ? data : sums[l - 1]!);
-      for (let l = 0; l < levels.length; l++) {
-        add('scanBlocks', { scanData: levelData(l), scanSums: sums[l]! }, offsets[l]!, grid(Math.ceil(levels[l]! / C.BVH_SCAN_BLOCK), this.maxX), `${label} scan ${l}`);
-      }
-      for (let l = levels.length - 2; l >= 0; l--) {
-        add('scanAdd', { scanData: levelData(l), scanSums: sums[l]! }, offsets[l]!, grid(Math.ceil(levels[l]! / C.BVH_SCAN_BLOCK), this.maxX), `${label} add ${l}`);
-      }
-    };
-
-    add('centroidBounds', { buildPrimitives: source, buildState: state }, base, this.groups(n), 'centroid bounds');
-    add('mortonCodes', { buildPrimitives: source, buildState: state, sortKeysOut: keysA, sortValuesOut: order }, base, this.groups(n), 'morton codes');
-    const passes = 8 * kw;
-    for (let pass = 0; pass < passes; pass++) {
-      const even = pass % 2 === 0;
-      const io: Resources = {
-        sortKeysIn: even ? keysA : keysB, sortValuesIn: even ? order : valuesB,
-        sortKeysOut: even ? keysB : keysA, sortValuesOut: even ? valuesB : order,
-        sortHistogram: histogram,
-      };
-      const offset = slots.add({ ...this.base, digitShift: 4 * (pass % 8), digitWord: Math.floor(pass / 8), blockCount: blocks });
-      add('sortCount', io, offset, grid(blocks, this.maxX), `sort count ${pass}`);
-      scan(histogram, histogramLevels, `sort ${pass}`);
-      add('sortScatter', io, offset, grid(blocks, this.maxX), `sort scatter ${pass}`);
-    }
-    // An even number of passes leaves the sorted pairs in keysA and `order`.
-    if (m > 0) add('hierarchy', { sortKeysIn: keysA, ...lbvh }, base, this.groups(m), 'lbvh hierarchy');
-    add('gather', { sortValuesIn: order, buildPrimitives: source, gatheredPrimitives: primitives }, base, this.groups(n), 'gather primitives');
-    const emit: Resources = { sortedPrimitives: primitives, ...lbvh, lbvhRank, outNodes: nodes, outParents: parents, buildSummary: this.summary };
+    const list = new DispatchList(this.device, this.pipelines, {
+      buildPrimitives: source, buildState: state, sortKeysIn: sort.keys, sortValuesIn: this.order, sortKeysOut: sort.keys, sortValuesOut: this.order,
+      gatheredPrimitives: primitives, sortedPrimitives: primitives, lbvhNodes, lbvhParents, lbvhData, lbvhFlags, lbvhRank,
+      outNodes: nodes, outParents: parents, buildSummary: this.summary,
+    });
+    const base = list.slot(this.base);
+    list.add('centroidBounds', {}, base, list.items(n), 'centroid bounds');
+    list.add('mortonCodes', {}, base, list.items(n), 'morton codes');
+    recordRadixSort(list, sort, n, kw, this.base);
+    if (m > 0) list.add('hierarchy', {}, base, list.items(m), 'lbvh hierarchy');
+    list.add('gather', {}, base, list.items(n), 'gather primitives');
     if (m > 0) {
-      add('fit', { sortedPrimitives: primitives, ...lbvh, lbvhFlags, buildSummary: this.summary }, base, this.groups(n), 'lbvh fit');
-      add('markKept', emit, base, this.groups(m), 'mark kept');
-      scan(lbvhRank, rankLevels, 'kept');
-      add('emitNodes', emit, base, this.groups(m), 'emit nodes');
+      list.add('fit', {}, base, list.items(n), 'lbvh fit');
+      list.add('markKept', {}, base, list.items(m), 'mark kept');
+      list.scan(lbvhRank, m, sums, this.base, 'kept');
+      list.add('emitNodes', {}, base, list.items(m), 'emit nodes');
     }
-    add('writeSummary', emit, base, [1, 1], 'write summary');
-
-    const uniforms = slots.upload(device, null);
+    list.add('writeSummary', {}, base, [1, 1], 'write summary');
+    const { uniforms, dispatches } = list.finish();
     created.push(uniforms);
-    for (const d of pending) {
-      dispatches.push({ kernel: d.kernel, group: bindGroup(device, p[d.kernel], { ...d.resources, bvhBuild: uniforms }, d.label), offset: d.offset, workgroups: d.workgroups });
-    }
-    this.scratch = { buffers: created, uniforms, dispatches, clears: [state, lbvhFlags] };
+    this.scratch = { buffers: created, dispatches, clears: [state, lbvhFlags] };
     return this.scratch;
   }
 
@@ -426,14 +255,17 @@ export class GpuBvhBuilder {
     if (this.refitState && this.refitState.nodeCount === nodeCount) return this.refitState;
     this.refitState?.uniforms.destroy();
     this.refitState?.flags.destroy();
-    const { source, primitives } = this.buffers;
-    const slots = new UniformSlots();
-    const offset = slots.add({ ...this.base, nodeCount });
-    const uniforms = slots.upload(this.device, null);
+    const { source, primitives, nodes, parents } = this.buffers;
     const flags = this.storage('bvh refit flags', nodeCount * 4);
-    const gather = bindGroup(this.device, this.pipelines.gather, { bvhBuild: uniforms, sortValuesIn: this.order, buildPrimitives: source, gatheredPrimitives: primitives }, 'refit gather');
-    const refit = refitDispatches(this.device, this.pipelines, { nodes: this.buffers.nodes, parents: this.buffers.parents, primitives, nodeCount }, uniforms, offset, flags, this.summary);
-    this.refitState = { nodeCount, uniforms, flags, dispatches: [{ kernel: 'gather', group: gather, offset, workgroups: this.groups(this.primitiveCount) }, ...refit] };
+    const list = new DispatchList(this.device, this.pipelines, {
+      sortValuesIn: this.order, buildPrimitives: source, gatheredPrimitives: primitives,
+      sortedPrimitives: primitives, refitNodes: nodes, refitParents: parents, refitFlags: flags, buildSummary: this.summary,
+    });
+    const offset = list.slot({ ...this.base, nodeCount });
+    list.add('gather', {}, offset, list.items(this.primitiveCount), 'refit gather');
+    recordRefit(list, nodeCount, offset);
+    const { uniforms, dispatches } = list.finish();
+    this.refitState = { nodeCount, uniforms, flags, dispatches };
     return this.refitState;
   }
 
@@ -458,13 +290,9 @@ export interface RefitTarget {
   nodeCount: number;
 }
 
-function refitDispatches(device: GPUDevice, p: BvhBuildPipelines, t: RefitTarget, uniforms: GPUBuffer, offset: number, flags: GPUBuffer, summary: GPUBuffer): Dispatch[] {
-  const resources: Resources = { bvhBuild: uniforms, refitNodes: t.nodes, refitParents: t.parents, refitFlags: flags, sortedPrimitives: t.primitives, buildSummary: summary };
-  const workgroups = grid(Math.ceil(t.nodeCount / C.BVH_BUILD_WORKGROUP), device.limits.maxComputeWorkgroupsPerDimension);
-  return [
-    { kernel: 'refitReset', group: bindGroup(device, p.refitReset, resources, 'refit reset'), offset, workgroups },
-    { kernel: 'refitNodes', group: bindGroup(device, p.refitNodes, resources, 'refit nodes'), offset, workgroups },
-  ];
+function recordRefit(list: DispatchList, nodeCount: number, offset: number): void {
+  list.add('refitReset', {}, offset, list.items(nodeCount), 'refit reset');
+  list.add('refitNodes', {}, offset, list.items(nodeCount), 'refit nodes');
 }
 
 /**
@@ -486,15 +314,18 @@ export class GpuBvhRefitter {
     if (!Number.isInteger(target.nodeCount) || target.nodeCount < 1) throw new RangeError(`GpuBvhRefitter: nodeCount must be a positive integer, got ${target.nodeCount}`);
     requireBufferSize(target.nodes, target.nodeCount * bvhNodeLayout.size, 'nodes');
     requireBufferSize(target.parents, target.nodeCount * 4, 'parents');
-    const slots = new UniformSlots();
-    const offset = slots.add({ nodeCount: target.nodeCount, traversalCost: 1, intersectionCost: 1 });
-    this.uniforms = slots.upload(device, null);
     const storage = (label: string, bytes: number, extra = 0): GPUBuffer =>
       device.createBuffer({ label, size: Math.max(16, bytes), usage: BufferUsage.STORAGE | BufferUsage.COPY_DST | extra });
     this.flags = storage('bvh refit flags', target.nodeCount * 4);
     this.summary = storage('bvh refit summary', C.BVH_SUMMARY_WORDS * 4, BufferUsage.COPY_SRC);
     this.summaryRead = device.createBuffer({ size: C.BVH_SUMMARY_WORDS * 4, usage: BufferUsage.MAP_READ | BufferUsage.COPY_DST });
-    this.dispatches = refitDispatches(device, pipelines, target, this.uniforms, offset, this.flags, this.summary);
+    const list = new DispatchList(device, pipelines, {
+      sortedPrimitives: target.primitives, refitNodes: target.nodes, refitParents: target.parents, refitFlags: this.flags, buildSummary: this.summary,
+    });
+    recordRefit(list, target.nodeCount, list.slot({ nodeCount: target.nodeCount }));
+    const { uniforms, dispatches } = list.finish();
+    this.uniforms = uniforms;
+    this.dispatches = dispatches;
   }
 
   static async create(device: GPUDevice, target: RefitTarget): Promise<GpuBvhRefitter> {

@@ -19,7 +19,7 @@ export const bvhBuildKernels = {
   fit: ['bvhFit', 'lbvh_fit'],
   markKept: ['bvhEmit', 'mark_kept'],
   emitNodes: ['bvhEmit', 'emit_nodes'],
-  writeSummary: ['bvhEmit', 'write_summary'],
+  writeSummary: ['bvhSummary', 'write_summary'],
   refitReset: ['bvhRefit', 'refit_reset'],
   refitNodes: ['bvhRefit', 'refit_nodes'],
 } as const satisfies Record<string, readonly [ProgramName, string]>;
