@@ -150,7 +150,12 @@ export async function createWavefrontPathTracingComputeRenderer(options: Wavefro
       config.output.denoise ? createDenoisePipelines(acquired.device, features) : null,
     ]);
     const renderer = new WavefrontRenderer(acquired, config, scene, prepared, lighting, { ...pipelines, adaptive: adaptivePipelines, denoise: denoisePipelines }, plan);
-    await renderer.createAcceleration();
+    try {
+      await renderer.createAcceleration();
+    } catch (error) {
+      renderer.destroy();
+      throw error;
+    }
     if (canvas) await renderer.attachCanvas(canvas);
     return renderer;
   } catch (error) {
