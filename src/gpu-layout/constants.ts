@@ -239,10 +239,12 @@ export const TONE_MAPPING_AGX = 3;
  */
 export const bvhBuildConstants = {
   BVH_BUILD_WORKGROUP: 256,
-  BVH_SORT_ITEMS: 4,
-  BVH_SORT_BLOCK: 1024,
+  BVH_SORT_ITEMS: 16,
+  BVH_SORT_BLOCK: 4096,
   BVH_SORT_RADIX: 16,
   BVH_SCAN_BLOCK: 1024,
+  /** Primitives per invocation of the centroid-bounds reduction. */
+  BVH_REDUCE_ITEMS: 16,
   /** Words per LBVH interior node in lbvhData: box (6), SAH cost, height and flags. */
   BVH_DATA_WORDS: 8,
   /** A box word not yet written (the NaN pattern no finite box produces). */

@@ -10,7 +10,7 @@ import type { BindingSpec } from '../../gpu-layout/bindings.ts';
 export const bvhBuildBindings = {
   bvhBuild: { group: 0, binding: 0, kind: 'uniform', dynamic: true, type: 'BvhBuildUniforms', doc: 'constants of this dispatch' },
   buildPrimitives: { group: 0, binding: 1, kind: 'storage', access: 'read', type: 'array<Primitive>', doc: 'input primitives in scene order' },
-  buildState: { group: 0, binding: 2, kind: 'storage', access: 'read_write', type: 'array<atomic<u32>>', doc: 'centroid bounds (order-preserving u32 encoding; minima complemented)' },
+  buildState: { group: 0, binding: 2, kind: 'storage', access: 'read_write', type: 'array<atomic<u32>>', doc: 'centroid bounds (order-preserving u32 encoding; minima complemented), then the Morton bit schedule' },
   sortKeysIn: { group: 0, binding: 3, kind: 'storage', access: 'read', type: 'array<u32>', doc: 'Morton keys (keyWords per primitive, low word first) read by a sort pass' },
   sortValuesIn: { group: 0, binding: 4, kind: 'storage', access: 'read', type: 'array<u32>', doc: 'scene-order primitive index of each key' },
   sortKeysOut: { group: 0, binding: 5, kind: 'storage', access: 'read_write', type: 'array<u32>', doc: 'keys written by a pass' },
@@ -23,6 +23,7 @@ export const bvhBuildBindings = {
   lbvhNodes: { group: 0, binding: 12, kind: 'storage', access: 'read_write', type: 'array<vec4u>', doc: 'LBVH interior nodes: left child, right child, first and last leaf (children: interior i < n - 1, leaf k as n - 1 + k)' },
   lbvhParents: { group: 0, binding: 13, kind: 'storage', access: 'read_write', type: 'array<u32>', doc: 'parent of every LBVH node (interior nodes, then leaves)' },
   lbvhData: { group: 0, binding: 14, kind: 'storage', access: 'read_write', type: 'array<atomic<u32>>', doc: 'per interior node: box (6 f32 bits), SAH cost, height | kept << 30 | collapsed << 31' },
+  lbvhRecords: { group: 0, binding: 23, kind: 'storage', access: 'read', type: 'array<u32>', doc: 'the same words as lbvhData, read plainly once the fit and the kept marks are done' },
   lbvhFlags: { group: 0, binding: 15, kind: 'storage', access: 'read_write', type: 'array<atomic<u32>>', doc: 'children that finished each interior node (bottom-up fit)' },
   lbvhRank: { group: 0, binding: 16, kind: 'storage', access: 'read_write', type: 'array<u32>', doc: 'kept interior nodes, scanned into their rank among them' },
   outNodes: { group: 0, binding: 17, kind: 'storage', access: 'read_write', type: 'array<BvhNode>', doc: 'the finished tree: the renderer\'s bvhNodes buffer' },

@@ -151,7 +151,7 @@ export class GpuBvhBuilder {
       histogram: make('bvh sort histogram', sortScratch.histogram * 4),
       sums,
     };
-    const state = make('bvh centroid bounds', 8 * 4);
+    const state = make('bvh centroid bounds and Morton bit schedule', 16 * 4);
     const lbvhNodes = make('lbvh nodes', Math.max(1, m) * 16);
     const lbvhParents = make('lbvh parents', (n + m) * 4);
     const lbvhData = make('lbvh data', Math.max(1, m) * C.BVH_DATA_WORDS * 4);
@@ -161,11 +161,12 @@ export class GpuBvhBuilder {
     // Every program binds all the buffers it declares; dispatches override the ones that vary.
     const list = new DispatchList(this.device, this.pipelines, {
       buildPrimitives: source, buildState: state, sortKeysIn: sort.keys, sortValuesIn: this.order, sortKeysOut: sort.keys, sortValuesOut: this.order,
-      gatheredPrimitives: primitives, sortedPrimitives: primitives, lbvhNodes, lbvhParents, lbvhData, lbvhFlags, lbvhRank,
+      gatheredPrimitives: primitives, sortedPrimitives: primitives, lbvhNodes, lbvhParents, lbvhData, lbvhRecords: lbvhData, lbvhFlags, lbvhRank,
       outNodes: nodes, outParents: parents, buildSummary: this.summary,
     });
     const base = list.slot(this.base);
-    list.add('centroidBounds', {}, base, list.items(n), 'centroid bounds');
+    list.add('centroidBounds', {}, base, list.blocks(Math.ceil(n / (C.BVH_REDUCE_ITEMS * C.BVH_BUILD_WORKGROUP))), 'centroid bounds');
+    list.add('mortonSchedule', {}, base, [1, 1], 'morton bit schedule');
     list.add('mortonCodes', {}, base, list.items(n), 'morton codes');
     recordRadixSort(list, sort, n, kw, this.base);
     if (m > 0) list.add('hierarchy', {}, base, list.items(m), 'lbvh hierarchy');

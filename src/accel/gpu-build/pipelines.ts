@@ -9,6 +9,7 @@ import type { ProgramName } from '../../shaders/programs.ts';
 
 export const bvhBuildKernels = {
   centroidBounds: ['bvhMorton', 'centroid_bounds'],
+  mortonSchedule: ['bvhMorton', 'morton_schedule'],
   mortonCodes: ['bvhMorton', 'morton_codes'],
   sortCount: ['bvhSort', 'sort_count'],
   sortScatter: ['bvhSort', 'sort_scatter'],
@@ -17,7 +18,7 @@ export const bvhBuildKernels = {
   hierarchy: ['bvhHierarchy', 'lbvh_hierarchy'],
   gather: ['bvhGather', 'gather_primitives'],
   fit: ['bvhFit', 'lbvh_fit'],
-  markKept: ['bvhEmit', 'mark_kept'],
+  markKept: ['bvhFit', 'mark_kept'],
   emitNodes: ['bvhEmit', 'emit_nodes'],
   writeSummary: ['bvhSummary', 'write_summary'],
   refitReset: ['bvhRefit', 'refit_reset'],
