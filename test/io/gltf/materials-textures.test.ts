@@ -13,7 +13,6 @@ import {
   KHRMaterialsSpecular,
   KHRMaterialsTransmission,
   KHRMaterialsVolume,
-  KHRTextureBasisu,
   KHRTextureTransform,
   EXTTextureWebP,
 } from '@gltf-transform/extensions';
@@ -137,30 +136,3 @@ test('KHR_materials_* factors and textures under their glTF names', async () => 
   assert.equal(scene.meshes[0].tangents!.length, 16);
 });
 
-const KTX2_BYTES = new Uint8Array([0xab, 0x4b, 0x54, 0x58, 0x20, 0x32, 0x30, 0xbb, 0x0d, 0x0a, 0x1a, 0x0a, 0, 0, 0, 0]);
-
-test('optional KHR_texture_basisu: fallback image used where present, else the slot is dropped with a warning', async () => {
-  const doc = new Document();
-  doc.createExtension(KHRTextureBasisu).setRequired(false);
-  const ktx = doc.createTexture('gpu').setMimeType('image/ktx2').setImage(KTX2_BYTES);
-  doc.createScene().addChild(doc.createNode('n').setMesh(quadMesh(doc, doc.createBuffer(), doc.createMaterial('m').setBaseColorTexture(ktx))));
-  const glb = await toGlb(doc);
-  const dropped = await loadGltfScene(glb);
-  assert.equal(dropped.materials[0].baseColorTexture, undefined);
-  assert.equal(dropped.images.length, 0);
-  assert.ok(dropped.warnings.some((w) => w.startsWith('/images/0') && /KTX2/.test(w)), dropped.warnings.join('\n'));
-  assert.ok(dropped.warnings.some((w) => w.startsWith('/materials/0/pbrMetallicRoughness/baseColorTexture') && /dropped/.test(w)));
-
-  // The same texture with a core PNG `source` as fallback (as exporters write optional basisu).
-  const { json, resources } = await (await import('./helpers.ts')).createIO().writeJSON(doc);
-  json.images!.push({ uri: 'fallback.png', mimeType: 'image/png' });
-  json.textures![0].source = 1;
-  json.buffers![0].uri = `data:application/octet-stream;base64,${Buffer.from(resources[json.buffers![0].uri!]).toString('base64')}`;
-  json.images![0].uri = `data:image/ktx2;base64,${Buffer.from(KTX2_BYTES).toString('base64')}`;
-  json.images![1].uri = `data:image/png;base64,${Buffer.from(png()).toString('base64')}`;
-  delete json.images![0].bufferView;
-  const withFallback = await loadGltfScene(new TextEncoder().encode(JSON.stringify(json)));
-  assert.equal(withFallback.images.length, 1);
-  assert.deepEqual([...withFallback.images[0].data], [...PIXELS]);
-  assert.equal(withFallback.materials[0].baseColorTexture!.index, 0);
-});
