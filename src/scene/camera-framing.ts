@@ -88,15 +88,16 @@ export function frameBounds(bounds: SceneBounds | undefined, options: FrameBound
   const { toEye, right, up } = orbitFrame(azimuth, elevation);
   const tanY = Math.tan((fovY * DEG) / 2) * (1 - margin);
   const tanX = tanY * aspect;
-  // A point box still needs a non-zero distance: a thousandth of the largest coordinate, or 1e-3.
-  const floor = 1e-3 * Math.max(1, ...center.map(Math.abs));
+  // The eye stays at least a thousandth of the box diagonal in front of every corner; a point box
+  // still gets a distance (a thousandth of its largest coordinate, or 1e-3).
+  const diagonal = Math.hypot(max[0] - min[0], max[1] - min[1], max[2] - min[2]);
+  const floor = 1e-3 * (diagonal > 0 ? diagonal : Math.max(1, ...center.map(Math.abs)));
   let distance: number;
   if (options.distance !== undefined) {
     distance = finiteIn(options.distance, 0, 'distance', 0, Infinity, true);
   } else if (fit === 'sphere') {
-    const radius = Math.hypot(max[0] - min[0], max[1] - min[1], max[2] - min[2]) / 2;
     // The sphere's silhouette cone of half-angle asin(r / d) must fit the narrower half-field.
-    distance = Math.max(floor, radius / Math.sin(Math.atan(Math.min(tanX, tanY))));
+    distance = Math.max(floor, diagonal / 2 / Math.sin(Math.atan(Math.min(tanX, tanY))));
   } else {
     // Each corner at depth d - z in front of the eye (z along toEye) needs |x| <= (d - z) tanX and
     // |y| <= (d - z) tanY: d >= z + |x| / tanX and d >= z + |y| / tanY.
@@ -108,7 +109,8 @@ export function frameBounds(bounds: SceneBounds | undefined, options: FrameBound
     }
   }
   const position = center.map((v, i) => v + distance * toEye[i]!);
-  return { type: 'perspective', position, target: center, up, fovYDegrees: fovY };
+  // `+ 0` turns -0 into 0 (sin(0) * -x) so equal views compare equal.
+  return { type: 'perspective', position, target: center, up: up.map((v) => v + 0), fovYDegrees: fovY };
 }
 
 /** `frameBounds` options for an orbit of the bounds centre: the CLI's `--orbit azimuth,elevation[,distance]`. */

@@ -13,6 +13,8 @@ import {
   KHRMaterialsSpecular,
   KHRMaterialsTransmission,
   KHRMaterialsVolume,
+  KHRMaterialsPBRSpecularGlossiness,
+  KHRMaterialsUnlit,
   KHRTextureTransform,
   EXTTextureWebP,
 } from '@gltf-transform/extensions';
@@ -136,3 +138,48 @@ test('KHR_materials_* factors and textures under their glTF names', async () => 
   assert.equal(scene.meshes[0].tangents!.length, 16);
 });
 
+
+test('KHR_materials_pbrSpecularGlossiness (required): a dielectric with the specular colour as F0 (ior 0) and roughness 1 - glossiness per texel', async () => {
+  const doc = new Document();
+  const ext = doc.createExtension(KHRMaterialsPBRSpecularGlossiness).setRequired(true);
+  // Specular-glossiness texels: rgb specular colour, alpha glossiness 0, 128 and 255.
+  const sg = doc.createTexture('sg').setMimeType('image/png').setImage(png(new Uint8Array([10, 20, 30, 0, 40, 50, 60, 128, 70, 80, 90, 255, 0, 0, 0, 255])));
+  const diffuse = doc.createTexture('diffuse').setMimeType('image/png').setImage(png());
+  const textured = doc.createMaterial('textured').setBaseColorFactor([1, 0, 1, 1]).setMetallicFactor(1);
+  textured.setExtension('KHR_materials_pbrSpecularGlossiness', ext.createPBRSpecularGlossiness()
+    .setDiffuseFactor([0.5, 0.6, 0.7, 0.8]).setDiffuseTexture(diffuse).setSpecularFactor([0.9, 0.8, 0.7]).setGlossinessFactor(0.5).setSpecularGlossinessTexture(sg));
+  const plain = doc.createMaterial('factors only');
+  plain.setExtension('KHR_materials_pbrSpecularGlossiness', ext.createPBRSpecularGlossiness().setDiffuseFactor([0.2, 0.3, 0.4, 1]).setSpecularFactor([0.04, 0.04, 0.04]).setGlossinessFactor(0.75));
+  const buffer = doc.createBuffer();
+  doc.createScene().addChild(doc.createNode('a').setMesh(quadMesh(doc, buffer, textured))).addChild(doc.createNode('b').setMesh(quadMesh(doc, buffer, plain)));
+  const scene = await loadGltfScene(await toGlb(doc));
+  assert.deepEqual(scene.warnings, []);
+  const [m, f] = scene.materials;
+  assertClose(m.baseColorFactor!, [0.5, 0.6, 0.7, 0.8], 1e-6, 'diffuse factor -> base colour factor');
+  assert.deepEqual([...scene.images[scene.textures[m.baseColorTexture!.index].image as number].data], [...PIXELS], 'the diffuse texture is the base colour texture');
+  assert.deepEqual([m.metallicFactor, m.roughnessFactor, m.ior, m.specularFactor], [0, 1, 0, 1]);
+  assertClose(m.specularColorFactor!, [0.9, 0.8, 0.7], 1e-6, 'specular factor -> F0 colour');
+  const specular = scene.images[scene.textures[m.specularColorTexture!.index].image as number];
+  assert.equal(specular.data[4], 40, 'the specular-glossiness texture is the specular colour texture');
+  const roughness = scene.images[scene.textures[m.metallicRoughnessTexture!.index].image as number];
+  // G = 255 (1 - 0.5 alpha / 255); B (metallic) = 0.
+  assert.deepEqual([0, 1, 2, 3].map((p) => roughness.data[p * 4 + 1]), [255, Math.round(255 * (1 - (0.5 * 128) / 255)), 128, 128]);
+  assert.deepEqual([0, 1, 2, 3].map((p) => roughness.data[p * 4 + 2]), [0, 0, 0, 0]);
+  assertClose(f.baseColorFactor!, [0.2, 0.3, 0.4, 1], 1e-6);
+  assert.ok(Math.abs(f.roughnessFactor! - 0.25) < 1e-6 && f.metallicRoughnessTexture === undefined && f.metallicFactor === 0 && f.ior === 0);
+});
+
+test('KHR_materials_unlit (required): the base colour becomes emission and nothing scatters', async () => {
+  const doc = new Document();
+  const unlit = doc.createExtension(KHRMaterialsUnlit).setRequired(true);
+  const image = doc.createTexture('colour').setMimeType('image/png').setImage(png());
+  const material = doc.createMaterial('flat').setBaseColorFactor([0.25, 0.5, 1, 0.5]).setBaseColorTexture(image).setAlphaMode('BLEND').setExtension('KHR_materials_unlit', unlit.createUnlit());
+  doc.createScene().addChild(doc.createNode('n').setMesh(quadMesh(doc, doc.createBuffer(), material)));
+  const scene = await loadGltfScene(await toGlb(doc));
+  assert.deepEqual(scene.warnings, []);
+  const m = scene.materials[0];
+  assertClose(m.emissiveFactor!, [0.25, 0.5, 1], 1e-6, 'emission = base colour factor');
+  assert.equal(m.emissiveTexture!.index, m.baseColorTexture!.index, 'emission texture = base colour texture');
+  assert.deepEqual([...m.baseColorFactor!], [0, 0, 0, 0.5], 'black base colour keeps the alpha');
+  assert.deepEqual([m.emissiveStrength, m.metallicFactor, m.specularFactor, m.alphaMode], [1, 0, 0, 'BLEND']);
+});
