@@ -97,11 +97,12 @@ export async function runRenderCommand(command: RenderCommand, io: { stderr: Pro
     let lastFrameMs: number | null = null;
     let stoppedBy: RenderSummary['stoppedBy'] = 'spp';
     progress.update(0, command.spp);
-    // The first frame takes one sample per pixel outside the clock: drivers that compile pipelines
-    // on their first dispatch (llvmpipe, some mobile drivers) do so here, so --time and the
-    // sample rate measure sampling only.
+    // The first frame runs outside the clock: drivers that compile pipelines on their first
+    // dispatch (llvmpipe, some mobile drivers) do so here, so --time and the sample rate measure
+    // sampling only. It is an ordinary frame (its samples count), so the cadence is unchanged.
+    const firstSamples = Math.min(command.sppPerFrame, command.spp);
     const firstStart = performance.now();
-    const first = await renderer.renderFrame({ samplesPerPixel: 1 });
+    const first = await renderer.renderFrame({ samplesPerPixel: firstSamples });
     const firstFrameMs = performance.now() - firstStart;
     if (first.samplesAdded <= 0 && !first.adaptive) throw new GpuRendererError('INVALID_STATE', 'renderFrame added no samples');
     accumulated = first.samplesAccumulated;
@@ -165,6 +166,7 @@ export async function runRenderCommand(command: RenderCommand, io: { stderr: Pro
       denoised: command.denoise,
       aovs: command.aovs,
       firstFrameSeconds: firstFrameMs / 1000,
+      firstFrameSamplesPerPixel: firstSamples,
       renderSeconds: renderMs / 1000,
       totalSeconds: (performance.now() - t0) / 1000,
       samplesPerSecond: (steady ? pixelSamples : firstPixelSamples) / rateSeconds,

@@ -14,10 +14,12 @@ export interface RenderSummary {
   /** AOV layers written into the .exr. */
   aovs?: readonly string[];
   /**
-   * Seconds of the first frame (one sample per pixel), rendered before the clock starts: drivers
-   * that compile pipelines on their first dispatch compile here. Undefined: not measured apart.
+   * Seconds of the first frame, rendered before the clock starts: drivers that compile pipelines
+   * on their first dispatch compile here. Undefined: not measured apart.
    */
   firstFrameSeconds?: number;
+  /** Samples per pixel of the first frame. */
+  firstFrameSamplesPerPixel?: number;
   /** Seconds spent in the renderFrame calls after the first frame (what --time limits). */
   renderSeconds: number;
   /** Seconds from start to the written PNG. */
@@ -56,7 +58,7 @@ export function formatSummary(s: RenderSummary): string {
     `  ${formatRate(s.samplesPerSecond)}samples/s, ${formatRate(s.raysPerSecond)}rays/s (${formatRate(s.rays)}rays), ` +
       `${formatDuration(s.renderSeconds)} rendering, ${formatDuration(s.totalSeconds)} total`,
     ...(s.firstFrameSeconds !== undefined
-      ? [`  first frame (1 spp, with shader compilation) ${formatDuration(s.firstFrameSeconds)}, before the clock: not in the rendering time, rates or --time`]
+      ? [`  first frame (${s.firstFrameSamplesPerPixel ?? '?'} spp, with shader compilation) ${formatDuration(s.firstFrameSeconds)}, before the clock: not in the rendering time, rates or --time`]
       : []),
     `  adapter: ${s.adapter}${s.invalidSamples > 0 ? `; ${s.invalidSamples} invalid samples dropped` : ''}`,
   ].join('\n');
