@@ -34,8 +34,9 @@ export const SUPPORTED_EXTENSIONS: ReadonlySet<string> = new Set([
   'KHR_materials_unlit',
   'KHR_lights_punctual',
   'KHR_node_visibility',
-  // Metadata only: nothing to render.
+  // Metadata only: nothing to render (FB_ngon_encoding says how the triangles came from polygons).
   'KHR_xmp_json_ld',
+  'FB_ngon_encoding',
   'EXT_mesh_features',
   'EXT_structural_metadata',
 ]);

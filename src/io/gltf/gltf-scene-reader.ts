@@ -70,7 +70,7 @@ export interface GltfScene {
   images: WavefrontImageInput[];
   camera: WavefrontCameraInput;
   lights: WavefrontPunctualLightInput[];
-  /** Non-enumerable. Things skipped, converted or dropped (points and lines, 16-bit images, KTX2 textures, ...). */
+  /** Non-enumerable. Things skipped, converted or dropped (points and lines, skins, unsupported optional extensions, ...). */
   readonly warnings: readonly string[];
   /** Non-enumerable. Every camera placed in the scene, in node order. */
   readonly cameras: readonly GltfCameraInfo[];

@@ -79,7 +79,8 @@ async function decodePng(bytes: Uint8Array): Promise<DecodedImage> {
   if (channels === 4 && depth === 8) return { image: { width, height, data: new Uint8Array(decoded.data.buffer, decoded.data.byteOffset, width * height * 4) }, notes };
   const samples = unpackSamples(decoded.data, width, height, channels, depth);
   const max = 2 ** depth - 1;
-  if (depth === 16) notes.push('16-bit PNG reduced to 8 bits per channel');
+  // 16-bit channels are rounded to 8 bits, the precision of the renderer's textures (as browsers'
+  // decoders do too): not worth a warning, a rounding well below what the slots resolve.
   const to8 = (v: number): number => (depth === 8 ? v : Math.round((v * 255) / max));
   const key = decoded.transparency;
   for (let p = 0; p < width * height; p++) {

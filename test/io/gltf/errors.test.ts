@@ -136,6 +136,17 @@ test('unsupported required extension', async () => {
   await bad(new TextEncoder().encode(JSON.stringify(json)), '/extensionsRequired/1', /MSFT_texture_dds is not supported/);
 });
 
+test('an unsupported optional extension is drawn without, with one warning naming it; metadata-only ones pass silently', async () => {
+  const doc = new Document();
+  doc.createScene().addChild(doc.createNode('n').setMesh(quadMesh(doc, doc.createBuffer())));
+  const { json, resources } = await createIO().writeJSON(doc);
+  json.extensionsUsed = ['MSFT_lod', 'FB_ngon_encoding'];
+  const buffer = json.buffers![0];
+  buffer.uri = `data:application/octet-stream;base64,${Buffer.from(resources[buffer.uri!]).toString('base64')}`;
+  const scene = await loadGltfScene(new TextEncoder().encode(JSON.stringify(json)));
+  assert.deepEqual(scene.warnings, ['MSFT_lod: not supported; the asset is drawn without it']);
+});
+
 test('a KTX2 image that does not decode: truncated, or of a format the loader cannot read', async () => {
   const doc = new Document();
   doc.createExtension(KHRTextureBasisu).setRequired(true);
