@@ -138,7 +138,7 @@ Options:
   --fov <deg>              vertical field of view of the camera rendered from, in (0, 179]
   --variant <name>         glTF: KHR_materials_variants variant to render
   --bvh-build <where>      cpu-upload (binned SAH on the CPU, the default) | gpu (LBVH built on the
-                           GPU: much faster to build, about 10-25 % costlier to trace)
+                           GPU: faster to build on a real GPU, its tree ~25-30 % costlier (SAH))
   -h, --help               show this help
 `;
 

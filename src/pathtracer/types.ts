@@ -69,9 +69,9 @@ export interface WavefrontPathTracingOptions extends Omit<WavefrontSceneDescript
   /**
    * Where the BVH is built. 'cpu-upload' (default): top-down binned SAH on the CPU (worker threads
    * for large meshes), uploaded once. 'gpu': an LBVH built by WGSL compute passes on the device
-   * (Morton codes, radix sort, Karras 2012 hierarchy, SAH leaf collapse): milliseconds instead of
-   * seconds on a real GPU for millions of triangles, with a tree about 10-25 % costlier to trace
-   * under the SAH. Both are traced by the same kernels and render the same image.
+   * (Morton codes, radix sort, Karras 2012 hierarchy, SAH leaf collapse), for a real GPU where
+   * building dominates; its tree's SAH cost is about 25-30 % above the CPU build's (README,
+   * Performance). Both are traced by the same kernels and render the same image.
    */
   accelerationBuildMode?: AccelerationBuildMode;
   canvas?: CanvasTarget;
