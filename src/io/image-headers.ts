@@ -101,7 +101,7 @@ function webp(b: Uint8Array): ImageHeaderResult {
 }
 
 function ktx2(b: Uint8Array): ImageHeaderResult {
-  if (b.length < 48) return { format: 'ktx2', error: 'the KTX2 header is truncated' };
+  if (b.length < 80) return { format: 'ktx2', error: 'the KTX2 container does not parse (its 80-byte header is truncated)' };
   const width = le32(b, 20);
   const height = Math.max(1, le32(b, 24));
   const depth = Math.max(1, le32(b, 28));
@@ -161,7 +161,7 @@ export function readImageHeader(bytes: Uint8Array): ImageHeaderResult | undefine
 }
 
 /**
- * Refuses (at `site`) an image whose header is unreadable (PNG, JPEG, WebP) or claims an empty size or a side over
+ * Refuses (at `site`) an image whose header is unreadable or claims an empty size or a side over
  * `maxImageDimension`, and charges its decoded bytes to `budget` when one is given. Returns the
  * header, or undefined for bytes of another format (the decoder reports those).
  */
@@ -169,12 +169,7 @@ export function checkImageHeader(bytes: Uint8Array, site: ResourceSite, limits: 
   const header = readImageHeader(bytes);
   if (header === undefined) return undefined;
   const name = header.format.toUpperCase();
-  if ('error' in header) {
-    // KTX2 and AVIF are not decoded by this package's decoders: a broken header is the decoder's
-    // to report (or the image is dropped); only a readable size is held to the limits.
-    if (header.format === 'ktx2' || header.format === 'avif') return undefined;
-    refuse(site, `the ${name} image does not decode: ${header.error}`);
-  }
+  if ('error' in header) refuse(site, `the ${name} image does not decode: ${header.error}`);
   const { width, height } = header;
   if (width < 1 || height < 1) refuse(site, `${name} image: the header claims ${width} x ${height} texels`);
   if (width > limits.maxImageDimension || height > limits.maxImageDimension) {

@@ -9,7 +9,7 @@ import { GpuRendererError, isGpuRendererError } from '../errors/gpu-renderer-err
 import { parseSceneFile, type WavefrontSceneFile } from '../scene/scene-file.ts';
 import type { WavefrontImageInput, WavefrontSceneDescription } from '../scene/types.ts';
 import type { EnvironmentMapInput } from '../lighting/environment-map.ts';
-import { loadEnvironmentMap } from '../lighting/load-environment-map.ts';
+import { loadEnvironmentMap, type NegativeTexelReport } from '../lighting/load-environment-map.ts';
 import { validateLightingOptions } from '../lighting/lighting-options.ts';
 import { requireNumberInRange } from '../errors/validate.ts';
 import { maxRadiance } from '../scene/limits.ts';
@@ -22,14 +22,6 @@ import { checkImageHeader } from './image-headers.ts';
 import { JSON_BYTES_PER_VALUE, MAX_JSON_DEPTH, scanJson } from './json-scan.ts';
 import { budgetOf, derivePolicy, locateSource, readReference, readSource, resolveResourcePolicy, type ResourcePolicy } from './resource-policy.ts';
 
-/** Options of `loadSceneFile` and `resolveSceneFile`. */
-export interface SceneFileLoadOptions {
-  /** Ends reading and fetching; the load rejects with the signal's reason. */
-  signal?: AbortSignal;
-  /** What the file's references may read and how much the load may decode (resource-policy.ts). */
-  resourcePolicy?: ResourcePolicy;
-}
-
 /** A resolved scene: the description plus, when its environment names a map file, that map. */
 export type WavefrontResolvedScene = WavefrontSceneDescription & { environmentMap?: EnvironmentMapInput };
 
@@ -37,6 +29,23 @@ export interface ResolvedSceneFile {
   scene: WavefrontResolvedScene;
   /** Notes from decoding and loading (e.g. glTF loader warnings), for the user. */
   warnings: string[];
+}
+
+/** Options of `resolveSceneFile` (and, but for `base`, of `loadSceneFile`). */
+export interface ResolveSceneFileOptions {
+  /** Locates relative URIs (loadSceneFile: the file itself); references must stay in its folder. */
+  base?: string | URL;
+  /** Ends reading and fetching; the load rejects with the signal's reason. */
+  signal?: AbortSignal;
+  /**
+   * What to do with negative texels of an environment map file whose `environment` does not say
+   * (`negativeTexels` there wins): 'error' (default) or 'zero'; see loadEnvironmentMap.
+   */
+  negativeTexels?: 'error' | 'zero';
+  /** Called with what zeroing negative texels changed (also when nothing was), and the field. */
+  onNegativeTexels?: (report: NegativeTexelReport, field: string) => void;
+  /** What the file's references may read and how much the load may decode (resource-policy.ts). */
+  resourcePolicy?: ResourcePolicy;
 }
 
 function asSceneFileError(error: unknown, field: string): GpuRendererError {
@@ -50,7 +59,7 @@ function asSceneFileError(error: unknown, field: string): GpuRendererError {
  * or URL) locates relative URIs, which must stay in its folder. Without `base` only data URIs can
  * be referenced.
  */
-export async function resolveSceneFile(file: WavefrontSceneFile, options: SceneFileLoadOptions & { base?: string | URL } = {}): Promise<ResolvedSceneFile> {
+export async function resolveSceneFile(file: WavefrontSceneFile, options: ResolveSceneFileOptions = {}): Promise<ResolvedSceneFile> {
   const base = options.base === undefined ? undefined : await locateSource(options.base, { code: 'INVALID_OPTION', field: 'base' });
   const resolved = await resolveResourcePolicy(options.resourcePolicy);
   const policy = resolved.budget === undefined ? derivePolicy(resolved, { budget: budgetOf(resolved) }) : resolved;
@@ -63,9 +72,12 @@ export async function resolveSceneFile(file: WavefrontSceneFile, options: SceneF
     const field = 'environment.map';
     try {
       const bytes = await readReference(environment.map, base, policy, { code: 'INVALID_SCENE_FILE', field }, signal);
+      const onNegativeTexels = options.onNegativeTexels;
       scene.environmentMap = await loadEnvironmentMap(bytes, {
         field,
         resourcePolicy: policy,
+        negativeTexels: environment.negativeTexels ?? options.negativeTexels ?? 'error',
+        ...(onNegativeTexels ? { onNegativeTexels: (report: NegativeTexelReport) => onNegativeTexels(report, field) } : {}),
         ...(environment.intensity !== undefined ? { intensity: environment.intensity } : {}),
         ...(environment.rotationDegrees !== undefined ? { rotationRadians: (environment.rotationDegrees * Math.PI) / 180 } : {}),
       });
@@ -126,7 +138,7 @@ function acceptSceneFile(scene: WavefrontResolvedScene): void {
 }
 
 /** Reads, parses and resolves a scene JSON file (Node: a path; anywhere: a URL). */
-export async function loadSceneFile(source: string | URL, options: SceneFileLoadOptions = {}): Promise<ResolvedSceneFile> {
+export async function loadSceneFile(source: string | URL, options: Omit<ResolveSceneFileOptions, 'base'> = {}): Promise<ResolvedSceneFile> {
   const site = { code: 'INVALID_SCENE_FILE', field: 'scene' } as const;
   if (typeof source !== 'string' && !(source instanceof URL)) throw new GpuRendererError('INVALID_OPTION', `expected a path or a URL, got ${source === null ? 'null' : typeof source}`, { field: 'source' });
   const url = await locateSource(source, site);

@@ -99,7 +99,7 @@ export async function loadEnvironmentMap(source: EnvironmentMapSource, options: 
   else throw new GpuRendererError('INVALID_ENVIRONMENT', 'not a Radiance .hdr ("#?" header) or OpenEXR file', { field });
   // The decoded texels are this call's own: zeroed in place (validation copies them anyway).
   if (negative === 'zero') {
-    // Zeroed whether or not a callback listens (an optional call would skip evaluating its argument).
+    // Zeroed whether or not anyone asks for the report (`f?.(g())` would skip g without f).
     const report = zeroNegativeChannels(image.data);
     options.onNegativeTexels?.(report);
   }

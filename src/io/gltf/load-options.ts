@@ -2,7 +2,7 @@
 import { fail, describe } from '../../errors/validate.ts';
 import type { GltfLoadOptions } from './gltf-scene-reader.ts';
 
-const KEYS = ['camera', 'variant', 'scene', 'signal', 'decoders', 'resourcePolicy'];
+const KEYS = ['camera', 'aspectRatio', 'variant', 'scene', 'signal', 'decoders', 'resourcePolicy'];
 
 export function validateGltfLoadOptions(options: unknown): GltfLoadOptions {
   if (options === undefined) return {};
@@ -12,6 +12,9 @@ export function validateGltfLoadOptions(options: unknown): GltfLoadOptions {
   for (const key of ['camera', 'scene'] as const) {
     const v = o[key];
     if (v !== undefined && typeof v !== 'string' && !(typeof v === 'number' && Number.isInteger(v) && v >= 0)) fail('INVALID_OPTION', key, `expected a name or an index, got ${describe(v)}`);
+  }
+  if (o.aspectRatio !== undefined && !(typeof o.aspectRatio === 'number' && Number.isFinite(o.aspectRatio) && o.aspectRatio > 0)) {
+    fail('INVALID_OPTION', 'aspectRatio', `expected a finite number > 0, got ${describe(o.aspectRatio)}`);
   }
   if (o.variant !== undefined && typeof o.variant !== 'string') fail('INVALID_OPTION', 'variant', `expected a variant name, got ${describe(o.variant)}`);
   if (o.signal !== undefined && (typeof o.signal !== 'object' || o.signal === null || typeof (o.signal as AbortSignal).throwIfAborted !== 'function')) {
