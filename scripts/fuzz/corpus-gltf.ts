@@ -1,7 +1,7 @@
 /**
  * The glTF seed corpus, built by code with @gltf-transform (no binary fixtures): small assets that
  * together reach every part of the loader: external and embedded buffers and images (PNG, JPEG,
- * WebP, a KTX2 stand-in), texture transforms and samplers, sparse accessors and morph targets,
+ * WebP, KTX2 (ETC1S, UASTC) and AVIF), texture transforms and samplers, sparse accessors and morph targets,
  * quantised and strip/fan/restart geometry, deep hierarchies, GPU instancing, cameras, lights,
  * node visibility, every KHR_materials_* extension with textures, variants, skins and animations,
  * Draco and meshopt compression.
@@ -11,6 +11,7 @@ import {
   ALL_EXTENSIONS,
   EXTMeshGPUInstancing,
   EXTMeshoptCompression,
+  EXTTextureAVIF,
   EXTTextureWebP,
   KHRDracoMeshCompression,
   KHRLightsPunctual,
@@ -33,6 +34,8 @@ import {
   KHRTextureBasisu,
   KHRTextureTransform,
 } from '@gltf-transform/extensions';
+import { readFileSync } from 'node:fs';
+import { fileURLToPath } from 'node:url';
 import { encode as encodePng } from 'fast-png';
 import jpeg from 'jpeg-js';
 import { MeshoptEncoder } from 'meshoptimizer';
@@ -63,7 +66,8 @@ async function webp(): Promise<Uint8Array> {
   return new Uint8Array(await codec.default.encode({ width: 4, height: 4, data: new Uint8ClampedArray(pixels(4, 4)) }, { quality: 80 }));
 }
 
-const KTX2_STANDIN = new Uint8Array([0xab, 0x4b, 0x54, 0x58, 0x20, 0x32, 0x30, 0xbb, 0x0d, 0x0a, 0x1a, 0x0a, ...new Array(68).fill(0)]);
+/** The codec fixtures of the glTF tests (32 x 32, made by test/io/gltf/fixtures/make-codec-fixtures.ts). */
+const codecFixture = (name: string): Uint8Array => new Uint8Array(readFileSync(fileURLToPath(new URL(`../../test/io/gltf/fixtures/${name}`, import.meta.url))));
 
 function attr(doc: Document, buffer: GltfBuffer, type: 'SCALAR' | 'VEC2' | 'VEC3' | 'VEC4', array: TypedArray, normalized = false): Accessor {
   return doc.createAccessor().setType(type).setArray(array).setBuffer(buffer).setNormalized(normalized);
@@ -240,9 +244,13 @@ async function topology(): Promise<GltfSeed> {
 async function fallbacks(): Promise<GltfSeed> {
   const doc = new Document();
   doc.createExtension(KHRTextureBasisu).setRequired(false);
+  doc.createExtension(EXTTextureAVIF).setRequired(false);
   const buffer = doc.createBuffer().setURI('asset.bin');
-  const ktx = doc.createTexture('gpu').setMimeType('image/ktx2').setImage(KTX2_STANDIN).setURI('tex.ktx2');
-  doc.createScene().addChild(doc.createNode('k').setMesh(quad(doc, buffer, doc.createMaterial('k').setBaseColorTexture(ktx))));
+  const ktx = doc.createTexture('gpu').setMimeType('image/ktx2').setImage(codecFixture('pattern-etc1s.ktx2')).setURI('tex.ktx2');
+  const uastc = doc.createTexture('uastc').setMimeType('image/ktx2').setImage(codecFixture('pattern-uastc.ktx2')).setURI('sub/uastc.ktx2');
+  const avif = doc.createTexture('avif').setMimeType('image/avif').setImage(codecFixture('pattern.avif')).setURI('tex.avif');
+  const material = doc.createMaterial('k').setBaseColorTexture(ktx).setNormalTexture(uastc).setEmissiveTexture(avif).setEmissiveFactor([1, 1, 1]);
+  doc.createScene().addChild(doc.createNode('k').setMesh(quad(doc, buffer, material)));
   const seed = await toSeed('fallbacks', doc);
   // Exporters write an optional basisu texture with a core PNG source as fallback.
   const json = seed.json as { images: Json[]; textures: Array<Record<string, Json>> };
