@@ -254,8 +254,7 @@ async function fallbacks(): Promise<GltfSeed> {
   const seed = await toSeed('fallbacks', doc);
   // Exporters write an optional basisu texture with a core PNG source as fallback.
   const json = seed.json as { images: Json[]; textures: Array<Record<string, Json>> };
-  json.images.push({ uri: 'fallback.png', mimeType: 'image/png' });
-  json.textures[0]!.source = 1;
+  json.textures[0]!.source = json.images.push({ uri: 'fallback.png', mimeType: 'image/png' }) - 1;
   seed.resources['fallback.png'] = png();
   return seed;
 }

@@ -69,6 +69,9 @@ test('positions beyond the renderer range and vertex colours above 1 are refused
 test('what @gltf-transform crashed on is refused with the pointer: no texture source, non-object extensions, meshopt fallbacks', async () => {
   const textured = withMaterial({ pbrMetallicRoughness: { baseColorTexture: { index: 0 } } }, { images: [{ uri: 'data:image/png;base64,' }], textures: [{}] });
   await refused(loadGltfScene(bytes(textured)), 'INVALID_GLTF', '/textures/0', /no source image/);
+  // An extension's source counts only when the extension is in extensionsUsed (else it is not read).
+  const unlisted = { ...textured, textures: [{ extensions: { EXT_texture_avif: { source: 0 } } }] };
+  await refused(loadGltfScene(bytes(unlisted)), 'INVALID_GLTF', '/textures/0', /no source image/);
   await refused(loadGltfScene(bytes(triangleGltf(triangleDataUri, { bufferViews: [{ buffer: 0, byteLength: 36, extensions: 1e300 }] }))), 'INVALID_GLTF', '/bufferViews/0/extensions');
   await refused(loadGltfScene(bytes(withMaterial({ extensions: { KHR_materials_ior: 1 } }))), 'INVALID_GLTF', '/materials/0/extensions/KHR_materials_ior');
   await refused(loadGltfScene(bytes(triangleGltf(triangleDataUri, { extensionsUsed: 'perspective' }))), 'INVALID_GLTF', '/extensionsUsed');

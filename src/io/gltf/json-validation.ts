@@ -120,8 +120,9 @@ export function validateGltfJson(value: unknown): ValidatedJson {
   list(json, 'textures').forEach((entry, i) => {
     const texture = object(entry, pointer('textures', i));
     if (texture.source !== undefined) reference(texture.source, pointer('textures', i, 'source'), counts.images, 'images');
-    // glTF 2.0 section 5.29: without `source` an extension must supply the image.
-    const extensionSource = isObject(texture.extensions) && Object.values(texture.extensions).some((ext) => isObject(ext) && ext.source !== undefined);
+    // glTF 2.0 section 5.29: without `source` an extension must supply the image, and only an
+    // extension the asset lists in extensionsUsed is read at all.
+    const extensionSource = isObject(texture.extensions) && Object.entries(texture.extensions).some(([name, ext]) => used.includes(name) && isObject(ext) && ext.source !== undefined);
     if (texture.source === undefined && !extensionSource) failGltf(pointer('textures', i), 'the texture has no source image (no source, and no extension that supplies one)');
     if (texture.sampler !== undefined) reference(texture.sampler, pointer('textures', i, 'sampler'), counts.samplers, 'samplers');
     if (isObject(texture.extensions)) {
