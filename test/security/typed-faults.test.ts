@@ -72,6 +72,8 @@ test('what @gltf-transform crashed on is refused with the pointer: no texture so
   // An extension's source counts only when the extension is in extensionsUsed (else it is not read).
   const unlisted = { ...textured, textures: [{ extensions: { EXT_texture_avif: { source: 0 } } }] };
   await refused(loadGltfScene(bytes(unlisted)), 'INVALID_GLTF', '/textures/0', /no source image/);
+  const sourceless = { ...textured, extensionsUsed: ['KHR_texture_basisu'], textures: [{ source: 0, extensions: { KHR_texture_basisu: { value: { source: 0 } } } }] };
+  await refused(loadGltfScene(bytes(sourceless)), 'INVALID_GLTF', '/textures/0/extensions/KHR_texture_basisu/source', /expected an integer/);
   await refused(loadGltfScene(bytes(triangleGltf(triangleDataUri, { bufferViews: [{ buffer: 0, byteLength: 36, extensions: 1e300 }] }))), 'INVALID_GLTF', '/bufferViews/0/extensions');
   await refused(loadGltfScene(bytes(withMaterial({ extensions: { KHR_materials_ior: 1 } }))), 'INVALID_GLTF', '/materials/0/extensions/KHR_materials_ior');
   await refused(loadGltfScene(bytes(triangleGltf(triangleDataUri, { extensionsUsed: 'perspective' }))), 'INVALID_GLTF', '/extensionsUsed');

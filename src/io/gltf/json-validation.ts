@@ -62,6 +62,9 @@ export function accessorElementSize(componentType: number, type: string): number
   return component * TYPE_SIZES[type];
 }
 
+/** Texture extensions that name the texture's image by `source`. */
+const IMAGE_SOURCE_EXTENSIONS: ReadonlySet<string> = new Set(['KHR_texture_basisu', 'EXT_texture_webp', 'EXT_texture_avif']);
+
 export interface ValidatedJson {
   json: Json;
   /** Declared byte lengths of the buffers. */
@@ -127,7 +130,9 @@ export function validateGltfJson(value: unknown): ValidatedJson {
     if (texture.sampler !== undefined) reference(texture.sampler, pointer('textures', i, 'sampler'), counts.samplers, 'samplers');
     if (isObject(texture.extensions)) {
       for (const [name, ext] of Object.entries(texture.extensions)) {
-        if (isObject(ext) && ext.source !== undefined) reference(ext.source, pointer('textures', i, 'extensions', name, 'source'), counts.images, 'images');
+        // The image-supplying extensions require their `source` (each one's texture schema).
+        const required = IMAGE_SOURCE_EXTENSIONS.has(name) && used.includes(name);
+        if (isObject(ext) && (ext.source !== undefined || required)) reference(ext.source, pointer('textures', i, 'extensions', name, 'source'), counts.images, 'images');
       }
     }
   });
