@@ -8,7 +8,9 @@ export interface ProgramSpec {
   /** Root module, e.g. `package::pathtracer::kernels::intersect`. */
   readonly module: string;
   /** Which binding table the program's bindings come from. */
-  readonly bindings: 'pathTracer' | 'display';
+  readonly bindings: 'pathTracer' | 'display' | 'oidn';
+  /** WESL `@if` conditions the program is linked with (e.g. `f16`). */
+  readonly conditions?: Readonly<Record<string, boolean>>;
 }
 
 export const programSpecs = {
@@ -24,6 +26,13 @@ export const programSpecs = {
   denoise: { module: 'package::post::denoise::atrous', bindings: 'pathTracer' },
   resolve: { module: 'package::post::display::resolve', bindings: 'display' },
   present: { module: 'package::post::display::present', bindings: 'display' },
+  oidnConv: { module: 'package::post::denoise::oidn::conv', bindings: 'oidn' },
+  oidnConvF16: { module: 'package::post::denoise::oidn::conv', bindings: 'oidn', conditions: { f16: true } },
+  oidnExposure: { module: 'package::post::denoise::oidn::exposure', bindings: 'oidn' },
+  oidnInput: { module: 'package::post::denoise::oidn::input', bindings: 'oidn' },
+  oidnInputF16: { module: 'package::post::denoise::oidn::input', bindings: 'oidn', conditions: { f16: true } },
+  oidnOutput: { module: 'package::post::denoise::oidn::output', bindings: 'oidn' },
+  oidnOutputF16: { module: 'package::post::denoise::oidn::output', bindings: 'oidn', conditions: { f16: true } },
 } as const satisfies Record<string, ProgramSpec>;
 
 export type ProgramName = keyof typeof programSpecs;
