@@ -583,6 +583,8 @@ export const oidnImageUniformsLayout: StructLayout = defineStructLayout('OidnIma
   ['albedoOffset', 'u32'],
   ['normalStride', 'u32'],
   ['normalOffset', 'u32'],
+  ['emissionStride', 'u32', '0: no emission bypass'],
+  ['emissionOffset', 'u32'],
   ['inputChannels', 'u32', '3 colour, 6 + albedo, 9 + normal'],
   ['autoexposure', 'u32', '1: the input scale comes from the autoexposure pass'],
   ['inputScale', 'f32', 'the input scale when autoexposure is 0'],

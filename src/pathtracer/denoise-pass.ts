@@ -105,7 +105,13 @@ export class OidnFilmDenoiser implements WavefrontDenoiser {
     this.image = this.network.createImageDenoiser(
       target.width,
       target.height,
-      { color: film, divideByCount: true, albedo: { buffer: aovs, stride: 3, offset: 0 }, normal: { buffer: aovs, stride: 3, offset: 1 } },
+      {
+        color: film,
+        divideByCount: true,
+        albedo: { buffer: aovs, stride: 3, offset: 0 },
+        normal: { buffer: aovs, stride: 3, offset: 1 },
+        ...(settings.emission === 'exact' ? { emission: { buffer: aovs, stride: 3, offset: 2 } } : {}),
+      },
       target.resources.denoised as GPUBuffer,
       { maxMemoryBytes: settings.maxMemoryMB * 1024 * 1024 },
       target.createBuffer,

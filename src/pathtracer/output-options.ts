@@ -25,12 +25,13 @@ export const defaultDenoiseSettings: Readonly<WavefrontDenoiseSettings> = Object
   sigmaDepth: 1,
   auxiliary: true,
   precision: 'auto',
+  emission: 'exact',
   maxMemoryMB: 1024,
   weights: 'rt_hdr_alb_nrm',
 });
 
 const atrousOptionNames = ['iterations', 'sigmaLuminance', 'sigmaNormal', 'sigmaDepth'] as const;
-const oidnOptionNames = ['auxiliary', 'precision', 'maxMemoryMB', 'weights'] as const;
+const oidnOptionNames = ['auxiliary', 'precision', 'emission', 'maxMemoryMB', 'weights'] as const;
 
 /** The output options as the renderer's creation options carry them. */
 export interface WavefrontOutputOptions {
@@ -89,6 +90,8 @@ function parseDenoise(value: unknown): { settings: WavefrontDenoiseSettings; wei
   if (o.auxiliary !== undefined && typeof o.auxiliary !== 'boolean') fail('INVALID_OPTION', 'denoise.auxiliary', `expected a boolean, got ${JSON.stringify(o.auxiliary)}`);
   const precision = o.precision ?? d.precision;
   if (precision !== 'auto' && precision !== 'f16' && precision !== 'f32') fail('INVALID_OPTION', 'denoise.precision', `expected 'auto', 'f16' or 'f32', got ${JSON.stringify(precision)}`);
+  const emission = o.emission ?? d.emission;
+  if (emission !== 'exact' && emission !== 'network') fail('INVALID_OPTION', 'denoise.emission', `expected 'exact' or 'network', got ${JSON.stringify(emission)}`);
   let weights: Uint8Array | null = null;
   if (o.weights !== undefined) {
     if (o.weights instanceof ArrayBuffer) weights = new Uint8Array(o.weights.slice(0));
@@ -107,6 +110,7 @@ function parseDenoise(value: unknown): { settings: WavefrontDenoiseSettings; wei
       sigmaDepth: positive('sigmaDepth', d.sigmaDepth),
       auxiliary,
       precision,
+      emission,
       maxMemoryMB: o.maxMemoryMB === undefined ? d.maxMemoryMB : requireNumberInRange(o.maxMemoryMB, 'denoise.maxMemoryMB', { min: 16, max: 1 << 20 }),
       weights: weights ? 'custom' : auxiliary ? 'rt_hdr_alb_nrm' : 'rt_hdr',
     },

@@ -31,6 +31,13 @@ export interface WavefrontDenoiseOptions {
   auxiliary?: boolean;
   /** OIDN: 'f16' (needs the device feature shader-f16), 'f32', or 'auto' (default: f16 where the device has it). */
   precision?: 'auto' | 'f16' | 'f32';
+  /**
+   * OIDN: 'exact' (default): the emission seen at the first non-specular hit (emitters seen directly
+   * or through mirrors: exact, noise-free but for anti-aliasing) bypasses the network and is added
+   * back unchanged, so the network neither blurs nor brightens bright emitters' edges; 'network':
+   * the network denoises the whole beauty, as OIDN's own API does.
+   */
+  emission?: 'exact' | 'network';
   /** OIDN: memory budget of the network's tensors in MiB (tiles shrink to fit); default 1024. */
   maxMemoryMB?: number;
   /** OIDN: your own weights, the bytes of an OIDN `.tza` of an HDR `RT` model (e.g. rt_hdr_calb_cnrm_large). */
@@ -49,6 +56,7 @@ export interface WavefrontDenoiseSettings {
   /** OIDN settings (used when denoiser is 'oidn'). */
   auxiliary: boolean;
   precision: 'auto' | 'f16' | 'f32';
+  emission: 'exact' | 'network';
   maxMemoryMB: number;
   /** The OIDN weights: 'rt_hdr_alb_nrm', 'rt_hdr' or 'custom' (given as `weights`). */
   weights: string;

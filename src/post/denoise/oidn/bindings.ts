@@ -18,6 +18,7 @@ export const oidnBindings = {
   oidnScale: { group: 0, binding: 9, kind: 'storage', access: 'read_write', type: 'array<f32>', doc: '[0]: the input scale (autoexposure or given)' },
   oidnExposureBins: { group: 0, binding: 10, kind: 'storage', access: 'read_write', type: 'array<f32>', doc: 'mean luminance of every autoexposure bin' },
   oidnOutput: { group: 0, binding: 11, kind: 'storage', access: 'read_write', type: 'array<vec4f>', doc: 'the denoised image (rgb, 1)' },
+  oidnEmission: { group: 0, binding: 12, kind: 'storage', access: 'read', type: 'array<vec4f>', doc: 'exact emission taken out before the network and added back after (or the film AOV sums)' },
 } as const satisfies Record<string, BindingSpec>;
 
 export type OidnBindingName = keyof typeof oidnBindings;

@@ -28,6 +28,12 @@ export interface OidnImageSource {
   albedo?: { buffer: GPUBuffer; stride?: number; offset?: number };
   /** Shading normal xyz, any length (models with 9 input channels). */
   normal?: { buffer: GPUBuffer; stride?: number; offset?: number };
+  /**
+   * Exact (noise-free) emission rgb taken out of the colour before the network and added back to
+   * its output unchanged, e.g. emitters seen directly: the network then neither blurs nor brightens
+   * their edges.
+   */
+  emission?: { buffer: GPUBuffer; stride?: number; offset?: number };
   /** The colour, albedo and normal are sums over the colour's alpha (a film): divide by it. */
   divideByCount?: boolean;
 }
@@ -241,6 +247,7 @@ export class OidnImageDenoiser {
       oidnColor: source.color,
       oidnAlbedo: source.albedo?.buffer ?? source.color,
       oidnNormal: source.normal?.buffer ?? source.color,
+      oidnEmission: source.emission?.buffer ?? source.color,
     };
     const imageUniforms = (tile: TilePlan['tiles'][number] | null): GPUBuffer => {
       const data = new ArrayBuffer(oidnImageUniformsLayout.size);
@@ -257,6 +264,8 @@ export class OidnImageDenoiser {
         albedoOffset: source.albedo?.offset ?? 0,
         normalStride: source.normal?.stride ?? 1,
         normalOffset: source.normal?.offset ?? 0,
+        emissionStride: source.emission ? (source.emission.stride ?? 1) : 0,
+        emissionOffset: source.emission?.offset ?? 0,
         inputChannels: model.inputChannels,
         autoexposure: options.inputScale === undefined ? 1 : 0,
         inputScale: options.inputScale ?? 1,
@@ -277,7 +286,7 @@ export class OidnImageDenoiser {
       const uniforms = imageUniforms(tile);
       return {
         input: bindGroup(device, pipelines.input, { oidnImage: uniforms, oidnScale: scale, oidnDestination: slotOf('input'), ...sourceResources }, `oidn input ${i}`),
-        output: bindGroup(device, pipelines.output, { oidnImage: uniforms, oidnScale: scale, oidnSourceA: slotOf(last), oidnOutput: output }, `oidn output ${i}`),
+        output: bindGroup(device, pipelines.output, { oidnImage: uniforms, oidnScale: scale, oidnSourceA: slotOf(last), oidnOutput: output, ...sourceResources }, `oidn output ${i}`),
       };
     });
   }

@@ -16,6 +16,8 @@ export interface OidnReferenceInput {
   albedo?: LinearRgbaImage;
   /** First-hit shading normal, any length, in [-1, 1] (models with 9 input channels). */
   normal?: LinearRgbaImage;
+  /** Exact emission taken out of the colour before the network and added back after (optional). */
+  emission?: LinearRgbaImage;
   /** Multiplies the colour before the transfer function; default: OIDN's autoexposure. */
   inputScale?: number;
 }
@@ -100,7 +102,14 @@ export function denoiseOidnReference(model: UNetModel, input: OidnReferenceInput
       if (image.width !== width || image.height !== height) throw new GpuRendererError('INVALID_OPTION', `expected ${width}x${height} like color`, { field: key });
     }
   }
-  const scale = input.inputScale ?? autoexposure(input.color.data, width, height);
+  let color = input.color.data;
+  if (input.emission) {
+    requireLinearRgbaImage(input.emission, 'emission');
+    if (input.emission.width !== width || input.emission.height !== height) throw new GpuRendererError('INVALID_OPTION', `expected ${width}x${height} like color`, { field: 'emission' });
+    const e = input.emission.data;
+    color = color.map((v, i) => (i % 4 === 3 ? v : sanitize(v) - sanitize(e[i]!)));
+  }
+  const scale = input.inputScale ?? autoexposure(color, width, height);
   const pw = Math.ceil(width / unetAlignment) * unetAlignment;
   const ph = Math.ceil(height / unetAlignment) * unetAlignment;
   // Input processing (OIDN input_process): scaled colour through the normalised PU curve, albedo
@@ -111,7 +120,7 @@ export function denoiseOidnReference(model: UNetModel, input: OidnReferenceInput
       const p = y * width + x;
       const at = (c: number) => (c * ph + y) * pw + x;
       for (let c = 0; c < 3; c++) {
-        x0.data[at(c)] = puForward(sanitize(input.color.data[4 * p + c]! * scale)) * puNormScale;
+        x0.data[at(c)] = puForward(sanitize(color[4 * p + c]! * scale)) * puNormScale;
         if (input.albedo) x0.data[at(3 + c)] = sanitize(input.albedo.data[4 * p + c]!, 1);
         if (input.normal) x0.data[at(6 + c)] = Math.min(Math.max(Number.isNaN(input.normal.data[4 * p + c]!) ? 0 : input.normal.data[4 * p + c]!, -1), 1) * 0.5 + 0.5;
       }
@@ -135,7 +144,9 @@ export function denoiseOidnReference(model: UNetModel, input: OidnReferenceInput
   for (let y = 0; y < height; y++) {
     for (let x = 0; x < width; x++) {
       const p = y * width + x;
-      for (let c = 0; c < 3; c++) result[4 * p + c] = puInverse(sanitize(last.data[(c * ph + y) * pw + x]!) / puNormScale) * outputScale;
+      for (let c = 0; c < 3; c++) {
+        result[4 * p + c] = puInverse(sanitize(last.data[(c * ph + y) * pw + x]!) / puNormScale) * outputScale + (input.emission ? sanitize(input.emission.data[4 * p + c]!) : 0);
+      }
       result[4 * p + 3] = 1;
     }
   }

@@ -181,13 +181,15 @@ export interface TilePlan {
 const roundUp = (n: number, k: number): number => Math.ceil(n / k) * k;
 
 /**
- * Splits one axis of `size` pixels for tiles of `tile` pixels (one tile padded to 16 when it covers
- * the axis). Tile origins stay on the 16-pixel grid of the whole image, so every tile pools the
- * same 2x2 (... 16x16) windows the untiled network would; a tile may reach past the image's end,
- * where it reads zeros like the untiled network's padding.
+ * Splits one axis of `size` pixels for tiles of `tile` pixels (one tile, padded to 16, when it
+ * covers the axis). Tile origins stay on the 16-pixel grid of the whole image, so every tile pools
+ * the same windows the untiled network would, and no tile reaches past the image padded to 16: the
+ * network's zero padding sits where the untiled network has it (OIDN aligns its last tile the same
+ * way), so tiled and untiled results agree.
  */
 function axis(size: number, tile: number, overlap: number): { tile: number; spans: { origin: number; begin: number; end: number }[] } {
-  if (roundUp(size, 16) <= tile) return { tile: roundUp(size, 16), spans: [{ origin: 0, begin: 0, end: size }] };
+  const padded = roundUp(size, 16);
+  if (padded <= tile) return { tile: padded, spans: [{ origin: 0, begin: 0, end: size }] };
   // Snapping an origin down to the grid costs up to 15 pixels of the inner part.
   const inner = tile - 2 * overlap - 16;
   const count = Math.ceil(size / inner);
@@ -195,7 +197,7 @@ function axis(size: number, tile: number, overlap: number): { tile: number; span
   for (let i = 0; i < count; i++) {
     const begin = Math.floor((i * size) / count);
     const end = Math.floor(((i + 1) * size) / count);
-    spans.push({ origin: Math.max(0, Math.floor((begin - overlap) / 16) * 16), begin, end });
+    spans.push({ origin: Math.max(0, Math.min(Math.floor((begin - overlap) / 16) * 16, padded - tile)), begin, end });
   }
   return { tile, spans };
 }
