@@ -110,6 +110,7 @@ export function planBuffers(i: BufferPlanInput): Record<PlannedBufferName, Plann
     denoiseColor: frame(perPixel(out.atrous ?? out.denoise, 2) * 16, 'the a-trous ping-pong buffers (width x height)'),
     denoiseGuide: frame(perPixel(out.atrous ?? out.denoise, 3) * 16, 'the a-trous guides (width x height)'),
     denoised: frame(perPixel(out.denoise) * 16, 'the denoised image (width x height)'),
+    denoiseEnergy: frame((out.atrous ?? out.denoise ? 1 + 2 * Math.ceil(i.width / 8) * Math.ceil(i.height / 8) : 1) * 16, 'the a-trous energy sums (width x height / 64)'),
     displayUniforms: frame(resolveUniformsLayout.size, 'the display constants'),
     displayPixels: frame(pixels * 4, 'the display pixels (width x height)'),
     timestamps: frame(16, 'the timestamp results'),

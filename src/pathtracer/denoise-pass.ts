@@ -23,38 +23,49 @@ const bindingOf = (name: string): number => pathTracerBindings[name as keyof typ
 export interface DenoisePipelines {
   prepare: KernelPipeline;
   atrous: KernelPipeline;
+  energyPartial: KernelPipeline;
+  energyTotal: KernelPipeline;
   finish: KernelPipeline;
 }
 
 export async function createDenoisePipelines(device: GPUDevice, features: ShaderFeatures): Promise<DenoisePipelines> {
-  const [prepare, atrous, finish] = await Promise.all([
+  const [prepare, atrous, energyPartial, energyTotal, finish] = await Promise.all([
     computePipeline(device, 'denoiseInput', 'denoise_prepare', features),
     computePipeline(device, 'denoise', 'denoise_atrous', features),
+    computePipeline(device, 'denoise', 'denoise_energy_partial', features),
+    computePipeline(device, 'denoise', 'denoise_energy_total', features),
     computePipeline(device, 'denoise', 'denoise_finish', features),
   ]);
-  return { prepare, atrous, finish };
+  return { prepare, atrous, energyPartial, energyTotal, finish };
 }
 
-/** The uniform contents of every pass: the input pass, `iterations` a-trous passes, the finish. */
-export function denoisePassUniforms(settings: WavefrontDenoiseSettings, width: number, height: number): Record<string, number | number[]>[] {
+type PassKind = keyof DenoisePipelines;
+
+/**
+ * The passes in order with their uniform contents: the input pass, `iterations` a-trous passes,
+ * the two energy passes and the finish (the last three read the last a-trous output).
+ */
+export function denoisePassUniforms(settings: WavefrontDenoiseSettings, width: number, height: number): { kind: PassKind; uniforms: Record<string, number | number[]> }[] {
   const pixels = width * height;
   const common = { imageSize: [width, height], sigmaLuminance: settings.sigmaLuminance, sigmaNormal: settings.sigmaNormal, sigmaDepth: settings.sigmaDepth };
   const half = (i: number): number => (i % 2) * pixels;
-  const passes: Record<string, number | number[]>[] = [{ ...common, stepSize: 0, inBase: 0, outBase: 0 }];
-  for (let i = 0; i < settings.iterations; i++) passes.push({ ...common, stepSize: 1 << i, inBase: half(i), outBase: half(i + 1) });
-  passes.push({ ...common, stepSize: 0, inBase: half(settings.iterations), outBase: 0 });
+  const passes: { kind: PassKind; uniforms: Record<string, number | number[]> }[] = [{ kind: 'prepare', uniforms: { ...common, stepSize: 0, inBase: 0, outBase: 0 } }];
+  for (let i = 0; i < settings.iterations; i++) passes.push({ kind: 'atrous', uniforms: { ...common, stepSize: 1 << i, inBase: half(i), outBase: half(i + 1) } });
+  const last = { ...common, stepSize: 0, inBase: half(settings.iterations), outBase: 0 };
+  for (const kind of ['energyPartial', 'energyTotal', 'finish'] as const) passes.push({ kind, uniforms: last });
   return passes;
 }
 
 /**
- * The edge-avoiding a-trous denoiser on the renderer's film (src/post/denoise/atrous.wesl): the input
- * pass demodulates a copy of the mean radiance, `iterations` filter passes ping-pong between the two
- * halves of denoiseColor, the finish pass remodulates into `denoised`. Each pass has its own small
- * uniform buffer and bind groups, made once.
+ * The edge-avoiding a-trous denoiser on the renderer's film (src/post/denoise/atrous.wesl): the
+ * input pass demodulates a copy of the mean radiance, `iterations` filter passes ping-pong between
+ * the two halves of denoiseColor, two passes sum the raw and the filtered reflected radiance, the
+ * finish pass remodulates into `denoised` with the whole image's energy restored. Each pass has its
+ * own small uniform buffer and bind groups, made once.
  */
 export class AtrousDenoisePass implements WavefrontDenoiser {
   readonly name = 'atrous';
-  private readonly passes: { pipeline: KernelPipeline; groups: GPUBindGroup[] }[] = [];
+  private readonly passes: { pipeline: KernelPipeline; groups: GPUBindGroup[]; single: boolean }[] = [];
   private readonly width: number;
   private readonly height: number;
 
@@ -63,14 +74,13 @@ export class AtrousDenoisePass implements WavefrontDenoiser {
     const resources = target.resources as PathTracerResourceMap;
     this.width = width;
     this.height = height;
-    const uniforms = denoisePassUniforms(settings, width, height);
-    uniforms.forEach((values, i) => {
+    denoisePassUniforms(settings, width, height).forEach(({ kind, uniforms }, i) => {
       const data = new ArrayBuffer(denoiseUniformsLayout.size);
-      writeStruct(denoiseUniformsLayout, new DataView(data), 0, values);
+      writeStruct(denoiseUniformsLayout, new DataView(data), 0, uniforms);
       const buffer = i === 0 ? (resources.denoise as GPUBuffer) : target.createBuffer(`denoise pass ${i}`, data.byteLength, BufferUsage.UNIFORM | BufferUsage.COPY_DST);
       device.queue.writeBuffer(buffer, 0, data);
-      const pipeline = i === 0 ? pipelines.prepare : i === uniforms.length - 1 ? pipelines.finish : pipelines.atrous;
-      this.passes.push({ pipeline, groups: createProgramBindGroups(device, pipeline, { ...resources, denoise: buffer }, bindingOf, `denoise pass ${i}`) });
+      const pipeline = pipelines[kind];
+      this.passes.push({ pipeline, groups: createProgramBindGroups(device, pipeline, { ...resources, denoise: buffer }, bindingOf, `denoise pass ${i}`), single: kind === 'energyTotal' });
     });
   }
 
@@ -81,8 +91,13 @@ export class AtrousDenoisePass implements WavefrontDenoiser {
     for (const p of this.passes) {
       pass.setPipeline(p.pipeline.pipeline);
       p.groups.forEach((g, i) => pass.setBindGroup(i, g));
-      pass.dispatchWorkgroups(x, y);
-      tally?.direct(x * y, 64);
+      if (p.single) {
+        pass.dispatchWorkgroups(1);
+        tally?.direct(1, 256);
+      } else {
+        pass.dispatchWorkgroups(x, y);
+        tally?.direct(x * y, 64);
+      }
     }
     pass.end();
   }
