@@ -3,7 +3,7 @@
 // export condition: see scripts/browser-build). Run through `npm run build` (which regenerates the
 // embedded WGSL first).
 import { spawnSync } from 'node:child_process';
-import { chmodSync, existsSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
+import { chmodSync, cpSync, existsSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { buildBrowserDist } from './browser-build/index.ts';
@@ -25,6 +25,10 @@ function compile(project: string): void {
 rmSync(dist, { recursive: true, force: true });
 compile('tsconfig.build.json');
 compile('tsconfig.cjs.json');
+
+// The OIDN weights (modules generated from weights/oidn/*.tza, their declarations, the licence):
+// one copy beside dist/esm, dist/cjs and dist/browser, which all import it as ../../../../weights.
+cpSync(join(root, 'weights/oidn'), join(dist, 'weights/oidn'), { recursive: true, filter: (path) => !path.endsWith('.tza') });
 
 // The root package.json says "type": "module"; this marks dist/cjs/**/*.js as CommonJS.
 writeFileSync(join(dist, 'cjs/package.json'), `${JSON.stringify({ type: 'commonjs' }, null, 2)}\n`);

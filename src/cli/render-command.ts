@@ -130,7 +130,7 @@ export async function runRenderCommand(command: RenderCommand, io: { stderr: Pro
       samplesPerPixel: accumulated,
       meanSamplesPerPixel: pixelSamples / pixels,
       stoppedBy,
-      denoised: command.denoise,
+      ...(command.denoise ? { denoised: renderer.getSnapshot().denoise!.denoiser } : {}),
       aovs: command.aovs,
       renderSeconds,
       totalSeconds: (performance.now() - t0) / 1000,

@@ -161,8 +161,9 @@ export function resolveWavefrontDenoiser(output: { denoise: WavefrontDenoiseSett
 
 /**
  * Loads the OIDN weights and compiles the chosen denoiser's pipelines (after
- * resolveWavefrontDenoiser); returns its factory. User weights decide whether the network reads
- * the albedo and normal AOVs (settings.auxiliary is updated to match).
+ * resolveWavefrontDenoiser); returns its factory. Updates the settings to what runs: user weights
+ * decide whether the network reads the albedo and normal AOVs (auxiliary), and precision 'auto'
+ * becomes 'f16' or 'f32'.
  */
 export async function prepareWavefrontDenoiser(
   device: GPUDevice,
@@ -177,6 +178,7 @@ export async function prepareWavefrontDenoiser(
   }
   const model = customWeights ? oidnModelFromBytes(customWeights) : await loadOidnModel(settings.weights as OidnBuiltinWeights);
   settings.auxiliary = model.inputChannels > 3;
-  const pipelines = await compileOidnPipelines(device, oidnPrecisionFor(device, settings.precision));
+  settings.precision = oidnPrecisionFor(device, settings.precision);
+  const pipelines = await compileOidnPipelines(device, settings.precision);
   return { name: 'oidn', create: (target) => new OidnFilmDenoiser(target, model, pipelines, settings) };
 }

@@ -309,12 +309,12 @@ export class OidnImageDenoiser {
     return out;
   }
 
-  /** Encodes the whole denoise (one compute pass) into `encoder`. */
-  encode(encoder: GPUCommandEncoder): void {
+  /** Encodes the whole denoise (one compute pass, optionally timed) into `encoder`. */
+  encode(encoder: GPUCommandEncoder, timestampWrites?: GPUComputePassTimestampWrites): void {
     const { pipelines, convs } = this.network.parts();
     const model = this.network.model;
     const tw = this.tiles.tileWidth, th = this.tiles.tileHeight;
-    const pass = encoder.beginComputePass({ label: 'oidn' });
+    const pass = encoder.beginComputePass({ label: 'oidn', ...(timestampWrites ? { timestampWrites } : {}) });
     pass.setPipeline(pipelines.exposureBins.pipeline);
     pass.setBindGroup(0, this.exposure.groups[0]!);
     pass.dispatchWorkgroups(this.exposure.bins[0], this.exposure.bins[1]);
