@@ -28,8 +28,8 @@ export interface DenoiseTimingRow {
   memoryMiB: number;
   gpuMs: number | null;
   wallMs: number;
-  /** Multiply-adds of the network per second, from the GPU time where measured (else the wall time). */
-  teraMacsPerSecond: number;
+  /** Multiply-adds of the network per second (10^9), from the GPU time where measured (else the wall time). */
+  gigaMacsPerSecond: number;
 }
 
 function buffer(device: GPUDevice, width: number, height: number, f: (x: number, y: number, c: number) => number): GPUBuffer {
@@ -90,7 +90,7 @@ export async function runDenoiseTiming(width: number, height: number, runs: numb
       memoryMiB: denoiser.memoryBytes / 2 ** 20,
       gpuMs,
       wallMs,
-      teraMacsPerSecond: (macsPerPixel * denoiser.tiles.tileWidth * denoiser.tiles.tileHeight * denoiser.tiles.tiles.length) / ((gpuMs ?? wallMs) * 1e-3) / 1e12,
+      gigaMacsPerSecond: (macsPerPixel * denoiser.tiles.tileWidth * denoiser.tiles.tileHeight * denoiser.tiles.tiles.length) / ((gpuMs ?? wallMs) * 1e-3) / 1e9,
     });
     denoiser.destroy();
     network.destroy();
@@ -103,7 +103,7 @@ if (import.meta.url === `file://${process.argv[1]}`) {
   const runs = Number(process.env.BENCH_DENOISE_RUNS ?? 10);
   const result = await runDenoiseTiming(w, h, runs);
   console.log(`OIDN rt_hdr_alb_nrm ${w}x${h}, median of ${runs} on ${result.adapter}`);
-  console.table(result.rows.map((r) => ({ precision: r.precision, tiles: `${r.tiles} x ${r.tileSize}`, 'memory (MiB)': r.memoryMiB.toFixed(0), 'GPU ms': r.gpuMs?.toFixed(2) ?? 'n/a', 'wall ms': r.wallMs.toFixed(2), 'TMAC/s': r.teraMacsPerSecond.toFixed(3) })));
+  console.table(result.rows.map((r) => ({ precision: r.precision, tiles: `${r.tiles} x ${r.tileSize}`, 'memory (MiB)': r.memoryMiB.toFixed(0), 'GPU ms': r.gpuMs?.toFixed(2) ?? 'n/a', 'wall ms': r.wallMs.toFixed(2), 'GMAC/s': r.gigaMacsPerSecond.toFixed(1) })));
   const out = fileURLToPath(new URL('./results/', import.meta.url));
   await mkdir(out, { recursive: true });
   await writeFile(`${out}denoise-timing.json`, `${JSON.stringify({ date: new Date().toISOString(), ...result }, null, 2)}\n`);
