@@ -6,9 +6,9 @@
 //   draco3dgltf, ...) get `webpackIgnore` / `@vite-ignore` comments, so bundlers neither warn
 //   about nor try to resolve them (webpack would otherwise make an empty context module).
 // A Node.js built-in imported by name fails the build (browser code must not name one), and so
-// does import.meta (assets found through it would not be copied). Modules shared by every build
-// (dist/weights: the OIDN weights, one copy in the package) stay where they are: dist/browser
-// mirrors dist/esm's depth, so their relative specifiers resolve from here unchanged.
+// does import.meta (assets found through it would not be copied). Package subpath imports
+// (`#oidn-weights/...`: the OIDN weights, one copy in the package) stay as they are: bundlers
+// resolve them through the package's "imports".
 import { copyFileSync, existsSync, mkdirSync, readFileSync, writeFileSync } from 'node:fs';
 import { isBuiltin } from 'node:module';
 import { dirname, join, posix, relative, resolve, sep } from 'node:path';
@@ -42,11 +42,6 @@ function relativeSpecifier(from: string, target: string): string {
   return path.startsWith('.') ? path : `./${path}`;
 }
 
-/** Whether `target` (relative to dist/esm) is a module of dist/weights, which all builds share. */
-function sharedModule(esmDir: string, target: string): boolean {
-  return target.startsWith('../weights/') && target.endsWith('.js') && existsSync(join(esmDir, target));
-}
-
 /**
  * Copies the module graph of `esmDir/index.js` into `outDir` (same layout, with source maps),
  * applying the edits above; returns what it did.
@@ -74,7 +69,6 @@ export async function copyBrowserModules(esmDir: string, outDir: string): Promis
       }
       if (specifier.startsWith('.')) {
         const target = toPosix(relative(esmDir, resolve(esmDir, dirname(path), specifier)));
-        if (sharedModule(esmDir, target)) continue;
         if (!target.endsWith('.js') || !existsSync(join(esmDir, target))) throw new Error(`${path}: imports ${specifier}, which dist/esm does not have`);
         if (!seen.has(target)) {
           seen.add(target);

@@ -6,17 +6,11 @@
  */
 import { GpuRendererError } from '../../../errors/gpu-renderer-error.ts';
 import { parseTza } from './tza.ts';
+import { oidnWeightParts } from './weight-modules.generated.ts';
 import { unetFromTensors, type UNetModel } from './unet.ts';
 
 /** Built-in weights: colour + albedo + normal (the default), or colour alone. */
 export type OidnBuiltinWeights = 'rt_hdr_alb_nrm' | 'rt_hdr';
-
-// The modules sit in weights/oidn beside src/ (dist/weights/oidn beside dist/esm, dist/cjs and
-// dist/browser: the same relative path from every build).
-const importers: Record<OidnBuiltinWeights, () => Promise<{ tza: string }>> = {
-  rt_hdr_alb_nrm: () => import('../../../../weights/oidn/rt_hdr_alb_nrm.js'),
-  rt_hdr: () => import('../../../../weights/oidn/rt_hdr.js'),
-};
 
 function decodeBase64(text: string): Uint8Array {
   const binary = atob(text);
@@ -31,9 +25,13 @@ const cache = new Map<OidnBuiltinWeights, Promise<UNetModel>>();
 export function loadOidnModel(name: OidnBuiltinWeights): Promise<UNetModel> {
   let model = cache.get(name);
   if (!model) {
-    const load = importers[name];
-    if (!load) return Promise.reject(new GpuRendererError('INVALID_OPTION', `unknown built-in OIDN weights ${JSON.stringify(name)} (${Object.keys(importers).join(', ')})`, { field: 'denoise.weights' }));
-    model = load().then((m) => unetFromTensors(parseTza(decodeBase64(m.tza), 'denoise.weights')));
+    // The modules sit in the package's weights/oidn, reached through its subpath imports
+    // ("#oidn-weights/*" in package.json), which Node (ESM and CommonJS) and bundlers resolve
+    // alike, from the sources and from every build: one copy in the package, in parts small
+    // enough for bundlers' chunk-size limits.
+    const parts = oidnWeightParts[name];
+    if (!parts) return Promise.reject(new GpuRendererError('INVALID_OPTION', `unknown built-in OIDN weights ${JSON.stringify(name)} (${Object.keys(oidnWeightParts).join(', ')})`, { field: 'denoise.weights' }));
+    model = Promise.all(parts.map((load) => load())).then((modules) => unetFromTensors(parseTza(decodeBase64(modules.map((m) => m.part).join('')), 'denoise.weights')));
     model.catch(() => cache.delete(name));
     cache.set(name, model);
   }
