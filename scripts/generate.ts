@@ -13,6 +13,7 @@ import { reflectProgram } from './shader-build/reflect.ts';
 import { compactWgsl } from './shader-build/compact-wgsl.ts';
 import { linkProgram, weslProjectSources } from './shader-build/wesl-project.ts';
 import { generateRasterPrograms } from './shader-build/raster-programs.ts';
+import { embedCodecs } from './codec-build/embed-codecs.ts';
 import { generateOidnWeightModules } from './oidn-weights.ts';
 
 const tables: Record<string, Record<string, BindingSpec>> = { pathTracer: pathTracerBindings, display: displayBindings, oidn: oidnBindings };
@@ -63,5 +64,11 @@ try {
   console.error(`generate: ${(error as Error).message}`);
   process.exit(1);
 }
+const root = fileURLToPath(new URL('..', import.meta.url));
+const codecs = embedCodecs();
+for (const codec of codecs) {
+  const path = `${root}${codec.path}`;
+  if (!existsSync(path) || readFileSync(path, 'utf8') !== codec.text) writeFileSync(path, codec.text);
+}
 const weights = generateOidnWeightModules();
-console.log(`generate: ${entries.length} programs linked, ${rasterCount} raster programs, ${weights.length} OIDN weight modules`);
+console.log(`generate: ${entries.length} programs linked, ${rasterCount} raster programs, ${codecs.length} codec modules, ${weights.length} OIDN weights`);
