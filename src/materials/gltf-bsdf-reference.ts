@@ -34,6 +34,7 @@ import {
 } from './energy/table-lookup.ts';
 import { dielectricFresnelRgb, fresnelDielectric, fresnelSchlick, iorToF0, iridescentFresnel } from './reference/fresnel.ts';
 import { anisotropicAlphas, ggxDAniso, ggxG2, ggxVisibleNormalPdf, sampleGgxVisibleNormal, type Alphas } from './reference/microfacet.ts';
+import { lobeAlphas } from './reference/lobes.ts';
 import { sheenBrdf } from './reference/sheen.ts';
 import { cross, maxComponent, normalize as normalize3 } from './reference/vector.ts';
 
@@ -200,7 +201,7 @@ const scale3 = (a: Vec3, k: number): Vec3 => [a[0] * k, a[1] * k, a[2] * k];
 const mix3 = (a: Vec3, b: Vec3, t: number): Vec3 => [a[0] + (b[0] - a[0]) * t, a[1] + (b[1] - a[1]) * t, a[2] + (b[2] - a[2]) * t];
 
 function alphasOf(m: GltfBsdfMaterial): Alphas {
-  if (m.anisotropy !== undefined) return anisotropicAlphas(m.roughness, m.anisotropy);
+  if (m.anisotropy !== undefined) return lobeAlphas(anisotropicAlphas(m.roughness, m.anisotropy));
   const a = m.roughness * m.roughness;
   return { x: a, y: a };
 }
