@@ -33,7 +33,7 @@ import {
   lookupSheenAlbedo,
 } from './energy/table-lookup.ts';
 import { dielectricFresnelRgb, fresnelDielectric, fresnelSchlick, iorToF0, iridescentFresnel } from './reference/fresnel.ts';
-import { anisotropicAlphas, ggxDAniso, ggxG2, ggxVisibleNormalPdf, sampleGgxVisibleNormal, type Alphas } from './reference/microfacet.ts';
+import { anisotropicAlphas, ggxDAniso, ggxG2, ggxVisibleNormalPdf, ggxVisibleNormalSamplePoint, sampleGgxVisibleNormal, type Alphas } from './reference/microfacet.ts';
 import { lobeAlphas } from './reference/lobes.ts';
 import { sheenBrdf } from './reference/sheen.ts';
 import { cross, maxComponent, normalize as normalize3 } from './reference/vector.ts';
@@ -302,14 +302,36 @@ export function indexMatched(m: GltfBsdfMaterial): boolean {
 }
 
 /**
- * The delta transmission of an index-matched interface (indexMatched): its weight
- * (1 - metallic) transmission baseColor (1 - max F(wo.h)), the light each visible microfacet does not
- * reflect, averaged over the distribution of visible normals D_wo (Heitz 2018) by an n x n midpoint
- * rule in the sampling mapping's unit square (whose image measure is D_wo), or at h = n when smooth.
- * The layers above (clearcoat, sheen) are not included.
+ * The thin wall's slope scale (gltf-bsdf.wesl thin_slope_scale): its prisms deflect by (eta - 1) A,
+ * so the transmitted lobe's alphas are the specular lobe's times clamp(2 (eta - 1), 0, 1).
  */
-export function gltfIndexMatchedTransmittance(m: GltfBsdfMaterial, wo: Vec3, n = 256): Vec3 {
-  if (!indexMatched(m) || wo[2] <= 0) return [0, 0, 0];
+export function thinSlopeScale(m: GltfBsdfMaterial): number {
+  if (!Number.isFinite(m.ior)) return 1;
+  const e = Math.max(m.ior, 1 / m.ior);
+  return Math.min(1, Math.max(0, 2 * (e - 1)));
+}
+
+function thinTransmissionAlphas(m: GltfBsdfMaterial): Alphas {
+  const a = alphasOf(m);
+  const k = thinSlopeScale(m);
+  return lobeAlphas({ x: a.x * k, y: a.y * k });
+}
+
+/** Transmission straight through, a delta (gltf-bsdf.wesl straight_transmission). */
+export function straightTransmission(m: GltfBsdfMaterial): boolean {
+  if (!m.transmission) return false;
+  return m.transmission.refractive ? indexMatched(m) : smoothAlphas(thinTransmissionAlphas(m));
+}
+
+/**
+ * The delta transmission of a surface that transmits straight through (straightTransmission): its
+ * weight (1 - metallic) transmission baseColor (1 - max F(wo.h)), the light each visible microfacet
+ * does not reflect, averaged over the distribution of visible normals D_wo (Heitz 2018) by an
+ * n x n midpoint rule in the sampling mapping's unit square (whose image measure is D_wo), or at
+ * h = n when smooth. The layers above (clearcoat, sheen) are not included.
+ */
+export function gltfStraightTransmittance(m: GltfBsdfMaterial, wo: Vec3, n = 256): Vec3 {
+  if (!straightTransmission(m) || wo[2] <= 0) return [0, 0, 0];
   const a = alphasOf(m);
   const k = (1 - m.metallic) * m.transmission!.factor;
   const at = (cos: number): number => 1 - maxComponent(gltfDielectricFresnel(m, cos));
@@ -438,9 +460,18 @@ function baseEval(m: GltfBsdfMaterial, w: Weights, wo: Vec3, wi: Vec3): { f: Vec
       f = scale3(m.baseColor, k * btdf);
       microfacetPdf = ((ggxVisibleNormalPdf(wo, h, a) * Math.abs(dot(wi, h))) / denom) * (1 - gltfReflectProbability(m, fMax));
     } else if (!m.transmission.refractive) {
-      const btdf = (ggxDAniso(h, a) * ggxG2(wo, wm, a)) / (4 * wo[2] * wm[2]);
-      f = scale3(m.baseColor, k * btdf);
-      microfacetPdf = (ggxVisibleNormalPdf(wo, h, a) / (4 * dot(wo, h))) * (1 - gltfReflectProbability(m, fMax));
+      // The thin wall's lobe under its own alphas; the reflection's microfacet normal from the same
+      // sampling-square point chose between them (gltf-bsdf.wesl base_eval).
+      const at = thinTransmissionAlphas(m);
+      if (!smoothAlphas(at)) {
+        const [u0, u1] = ggxVisibleNormalSamplePoint(wo, at, h);
+        const same = at.x === a.x && at.y === a.y;
+        const pf = same ? fMax : maxComponent(gltfDielectricFresnel(m, dot(wo, sampleGgxVisibleNormal(wo, a, u0, u1))));
+        const rescale = m.energyCompensation ? lookupGgxAlbedo(wo[2], m.roughness) / lookupGgxAlbedo(wo[2], m.roughness * Math.sqrt(thinSlopeScale(m))) : 1;
+        const btdf = (ggxDAniso(h, at) * ggxG2(wo, wm, at)) / (4 * wo[2] * wm[2]);
+        f = scale3(m.baseColor, k * rescale * btdf);
+        microfacetPdf = (ggxVisibleNormalPdf(wo, h, at) / (4 * dot(wo, h))) * (1 - gltfReflectProbability(m, pf));
+      }
     }
   }
   if (m.diffuseTransmission && dt > 0) {
