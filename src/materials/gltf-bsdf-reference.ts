@@ -303,12 +303,11 @@ export function indexMatched(m: GltfBsdfMaterial): boolean {
 
 /**
  * The thin wall's slope scale (gltf-bsdf.wesl thin_slope_scale): its prisms deflect by (eta - 1) A,
- * so the transmitted lobe's alphas are the specular lobe's times clamp(2 (eta - 1), 0, 1).
+ * so the transmitted lobe's alphas are the specular lobe's times clamp(2 |eta - 1|, 0, 1).
  */
 export function thinSlopeScale(m: GltfBsdfMaterial): number {
   if (!Number.isFinite(m.ior)) return 1;
-  const e = Math.max(m.ior, 1 / m.ior);
-  return Math.min(1, Math.max(0, 2 * (e - 1)));
+  return Math.min(1, Math.max(0, 2 * Math.abs(m.ior - 1)));
 }
 
 function thinTransmissionAlphas(m: GltfBsdfMaterial): Alphas {
