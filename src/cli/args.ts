@@ -48,6 +48,16 @@ export interface RenderCommand {
   envIntensity?: number;
   /** Rotation of the environment map about +Y in degrees (`--env-rotation`). */
   envRotationDegrees?: number;
+  /** Negative texels of an environment map file (lossy EXR ringing): set to 0 and reported, or refused. */
+  negativeTexels: 'zero' | 'error';
+  /** Eye position (`--camera-position x,y,z`); replaces the scene's camera. */
+  cameraPosition?: [number, number, number];
+  /** Look-at point (`--camera-target x,y,z`, with --camera-position); default the scene bounds' centre. */
+  cameraTarget?: [number, number, number];
+  /** Orbit of the scene bounds' centre (`--orbit azimuth,elevation[,distance]`, degrees); replaces the scene's camera. */
+  orbit?: { azimuthDegrees: number; elevationDegrees: number; distance?: number };
+  /** Vertical field of view in degrees (`--fov`) of the camera rendered from. */
+  fovYDegrees?: number;
 }
 
 export interface HelpCommand {
@@ -72,6 +82,7 @@ export const renderDefaults = {
   denoise: false,
   half: false,
   energyCompensation: true,
+  negativeTexels: 'zero',
 } as const satisfies Omit<RenderCommand, 'kind' | 'scenePath' | 'aovs'>;
 
 export const usage = `Usage: gpu-renderer render [scene.json | model.glb | model.gltf] [options]
@@ -108,8 +119,21 @@ Options:
                            equirectangular, top row = +Y (replaces the scene's environment)
   --env-intensity <x>      multiplies the environment map's radiance (default 1)
   --env-rotation <deg>     rotates the environment map about +Y (default 0)
+  --negative-texels <m>    environment map texels below zero (the ringing of lossy EXR
+                           compression, e.g. the HDRIs of @pmndrs/assets): zero (set them to 0
+                           and report how many and how much energy that adds) | error (refuse
+                           the map) (default ${renderDefaults.negativeTexels}); --env also takes those
+                           packages' .exr.js modules (a default-exported data: URL)
   --camera <name>          glTF: render from the camera (node or camera) of that name
-                           (default the scene's first camera, else one framing the scene)
+                           (default the scene's first camera, else a raised three-quarter view
+                           framing the scene bounds: azimuth 30, elevation 25, fov 45)
+  --orbit <az,el[,dist]>   camera on an orbit of the scene bounds' centre: azimuth in degrees
+                           about +Y from +Z towards +X, elevation in degrees (-90..90) and
+                           distance (default: the nearest at which the bounds fit the image)
+  --camera-position <x,y,z> camera eye position (replaces the scene's camera)
+  --camera-target <x,y,z>  with --camera-position: the point looked at (default the centre of
+                           the scene bounds)
+  --fov <deg>              vertical field of view of the camera rendered from, in (0, 179]
   --variant <name>         glTF: KHR_materials_variants variant to render
   -h, --help               show this help
 `;
@@ -135,6 +159,26 @@ function positiveNumber(flag: string, text: string): number {
   const n = text.trim() === '' ? Number.NaN : Number(text);
   if (!Number.isFinite(n) || n <= 0) invalid(flag, `expected a finite number > 0, got ${JSON.stringify(text)}`);
   return n;
+}
+
+/** `x,y,z`: three finite numbers separated by commas. */
+function vector3(flag: string, text: string): [number, number, number] {
+  const parts = text.split(',');
+  const values = parts.map((p) => (p.trim() === '' ? Number.NaN : Number(p)));
+  if (values.length !== 3 || !values.every(Number.isFinite)) invalid(flag, `expected x,y,z (three finite numbers), got ${JSON.stringify(text)}`);
+  return values as [number, number, number];
+}
+
+/** `azimuth,elevation[,distance]` in degrees and scene units. */
+function orbit(flag: string, text: string): NonNullable<RenderCommand['orbit']> {
+  const values = text.split(',').map((p) => (p.trim() === '' ? Number.NaN : Number(p)));
+  if ((values.length !== 2 && values.length !== 3) || !values.every(Number.isFinite)) {
+    invalid(flag, `expected azimuth,elevation or azimuth,elevation,distance (finite numbers), got ${JSON.stringify(text)}`);
+  }
+  const [azimuthDegrees, elevationDegrees, distance] = values as [number, number, number | undefined];
+  if (Math.abs(elevationDegrees) > 90) invalid(flag, `elevation must be within [-90, 90] degrees, got ${elevationDegrees}`);
+  if (distance !== undefined && !(distance > 0)) invalid(flag, `distance must be > 0, got ${distance}`);
+  return { azimuthDegrees, elevationDegrees, ...(distance !== undefined ? { distance } : {}) };
 }
 
 /** True for paths the CLI loads as glTF 2.0 (.glb, .gltf; case-insensitive). */
@@ -256,6 +300,28 @@ export function parseRenderArgs(argv: readonly string[]): RenderCommand | HelpCo
       case '--env-rotation':
         command.envRotationDegrees = finiteNumber(flag, take());
         break;
+      case '--negative-texels': {
+        const mode = take();
+        if (mode !== 'zero' && mode !== 'error') invalid(flag, `expected zero or error, got ${JSON.stringify(mode)}`);
+        command.negativeTexels = mode;
+        break;
+      }
+      case '--camera-position':
+        command.cameraPosition = vector3(flag, take());
+        break;
+      case '--camera-target':
+        command.cameraTarget = vector3(flag, take());
+        break;
+      case '--orbit':
+        command.orbit = orbit(flag, take());
+        break;
+      case '--fov': {
+        const text = take();
+        const fov = text.trim() === '' ? Number.NaN : Number(text);
+        if (!(fov > 0 && fov <= 179)) invalid(flag, `expected degrees in (0, 179], got ${JSON.stringify(text)}`);
+        command.fovYDegrees = fov;
+        break;
+      }
       default:
         invalid(flag, `unknown option (see --help)`);
     }
@@ -270,6 +336,11 @@ export function parseRenderArgs(argv: readonly string[]): RenderCommand | HelpCo
   if (command.half && command.format !== 'exr') invalid('--half', 'applies to .exr output only');
   if (command.minSpp !== undefined && command.noiseThreshold === undefined) invalid('--min-spp', 'applies with --noise');
   if (command.minSpp !== undefined && command.minSpp > command.spp) invalid('--min-spp', `must be <= --spp (${command.spp})`);
+  if (command.cameraTarget !== undefined && command.cameraPosition === undefined) invalid('--camera-target', 'needs --camera-position (or use --orbit)');
+  if (command.orbit !== undefined && command.cameraPosition !== undefined) invalid('--orbit', 'cannot be combined with --camera-position');
+  if (command.camera !== undefined && (command.orbit !== undefined || command.cameraPosition !== undefined)) {
+    invalid('--camera', `names a camera of the asset; ${command.orbit !== undefined ? '--orbit' : '--camera-position'} places one instead`);
+  }
   for (const [flag, value] of [['--camera', command.camera], ['--variant', command.variant]] as const) {
     if (value !== undefined && (command.scenePath === undefined || !isGltfPath(command.scenePath))) invalid(flag, 'applies to glTF scenes (.glb or .gltf) only');
   }

@@ -9,7 +9,8 @@ import { GpuRendererError } from '../errors/gpu-renderer-error.ts';
 import { createCornellBoxScene } from '../scene/cornell-box.ts';
 import type { WavefrontSceneDescription } from '../scene/types.ts';
 import type { EnvironmentMapInput } from '../lighting/environment-map.ts';
-import { applyEnvironmentFlags } from './environment-flags.ts';
+import { applyCameraFlags } from './camera-flags.ts';
+import { applyEnvironmentFlags, negativeTexelNote } from './environment-flags.ts';
 import { writePng } from '../post/png-node.ts';
 import { writeImageFile } from '../post/files/image-file.ts';
 import type { WavefrontAovName } from '../post/aovs.ts';
@@ -26,20 +27,26 @@ export type { RenderSummary } from './render-format.ts';
  */
 export async function loadScene(
   scenePath: string | undefined,
-  options: { camera?: string; variant?: string; stderr?: ProgressStream } = {},
+  options: { camera?: string; variant?: string; stderr?: ProgressStream; aspectRatio?: number; negativeTexels?: 'zero' | 'error' } = {},
 ): Promise<WavefrontSceneDescription & { environmentMap?: EnvironmentMapInput }> {
   if (scenePath === undefined) return createCornellBoxScene();
   if (isGltfPath(scenePath)) {
     // Loaded on demand so JSON scenes never pull in the glTF reader and its decoders.
     const { loadGltfScene } = await import('../io/gltf/load-gltf-scene.ts');
-    const gltf = await loadGltfScene(scenePath, { camera: options.camera, variant: options.variant });
+    const gltf = await loadGltfScene(scenePath, { camera: options.camera, variant: options.variant, ...(options.aspectRatio !== undefined ? { aspectRatio: options.aspectRatio } : {}) });
     for (const warning of gltf.warnings) options.stderr?.write(`warning: ${warning}\n`);
     // Spreading keeps the renderer's scene keys only; the loader's metadata is non-enumerable.
     return { ...gltf };
   }
   // Scene JSON: its `uri` images are decoded and its `gltf` references loaded and merged.
   const { loadSceneFile } = await import('../io/scene-file-loader.ts');
-  const file = await loadSceneFile(scenePath);
+  const file = await loadSceneFile(scenePath, {
+    negativeTexels: options.negativeTexels ?? 'error',
+    onNegativeTexels: (report, field) => {
+      const text = negativeTexelNote(field, report);
+      if (text !== undefined) options.stderr?.write(`note: ${text}\n`);
+    },
+  });
   for (const warning of file.warnings) options.stderr?.write(`warning: ${warning}\n`);
   return file.scene;
 }
@@ -54,7 +61,15 @@ export function cliMinimumSamples(command: RenderCommand): number | undefined {
 
 export async function runRenderCommand(command: RenderCommand, io: { stderr: ProgressStream } = { stderr: process.stderr }): Promise<RenderSummary> {
   const t0 = performance.now();
-  const scene = await applyEnvironmentFlags(await loadScene(command.scenePath, { camera: command.camera, variant: command.variant, stderr: io.stderr }), command);
+  const loaded = await loadScene(command.scenePath, {
+    camera: command.camera,
+    variant: command.variant,
+    stderr: io.stderr,
+    aspectRatio: command.width / command.height,
+    negativeTexels: command.negativeTexels,
+  });
+  const lit = await applyEnvironmentFlags(loaded, command, (text) => io.stderr.write(`note: ${text}\n`));
+  const scene = applyCameraFlags(lit, command);
   const minimumSamplesPerPixel = cliMinimumSamples(command);
   const renderer: WavefrontPathTracingRenderer = await createWavefrontPathTracingComputeRenderer({
     width: command.width,
@@ -81,10 +96,25 @@ export async function runRenderCommand(command: RenderCommand, io: { stderr: Pro
     let renderMs = 0;
     let lastFrameMs: number | null = null;
     let stoppedBy: RenderSummary['stoppedBy'] = 'spp';
+    progress.update(0, command.spp);
+    // The first frame runs outside the clock: drivers that compile pipelines on their first
+    // dispatch (llvmpipe, some mobile drivers) do so here, so --time and the sample rate measure
+    // sampling only. It is an ordinary frame (its samples count), so the cadence is unchanged.
+    const firstSamples = Math.min(command.sppPerFrame, command.spp);
+    const firstStart = performance.now();
+    const first = await renderer.renderFrame({ samplesPerPixel: firstSamples });
+    const firstFrameMs = performance.now() - firstStart;
+    if (first.samplesAdded <= 0 && !first.adaptive) throw new GpuRendererError('INVALID_STATE', 'renderFrame added no samples');
+    accumulated = first.samplesAccumulated;
+    const firstPixelSamples = first.rays.camera;
+    const firstRays = first.rays.total;
+    invalidSamples += first.radianceDiagnostics.invalidSamples;
     const started = performance.now();
     const deadline = command.timeLimitMs === undefined ? Infinity : started + command.timeLimitMs;
-    progress.update(0, command.spp);
-    while (accumulated < command.spp) {
+    let converged = first.adaptive !== null && first.adaptive.activePixels === 0;
+    if (converged) stoppedBy = 'noise';
+    progress.update(accumulated, command.spp);
+    while (accumulated < command.spp && !converged) {
       const left = deadline - performance.now();
       if (left <= 0) {
         stoppedBy = 'time';
@@ -103,11 +133,12 @@ export async function runRenderCommand(command: RenderCommand, io: { stderr: Pro
       rays += stats.rays.total;
       invalidSamples += stats.radianceDiagnostics.invalidSamples;
       const elapsed = performance.now() - started;
-      const estimates = [(command.spp - accumulated) * (elapsed / Math.max(1, accumulated))];
+      const sampled = pixelSamples / pixels;
+      const estimates = [(command.spp - accumulated) * (elapsed / Math.max(1e-9, sampled))];
       if (Number.isFinite(deadline)) estimates.push(Math.max(0, deadline - performance.now()));
       if (stats.adaptive) estimates.push((stats.adaptive.estimatedRemainingPixelSamples * elapsed) / Math.max(1, pixelSamples));
       const remaining = Math.min(...estimates);
-      const converged = stats.adaptive !== null && stats.adaptive.activePixels === 0;
+      converged = stats.adaptive !== null && stats.adaptive.activePixels === 0;
       progress.update(accumulated, command.spp, {
         ...(estimates.length > 1 ? { fraction: converged ? 1 : elapsed / (elapsed + remaining), remainingSeconds: remaining / 1000 } : {}),
         ...(stats.adaptive ? { note: `${((100 * stats.adaptive.activePixels) / pixels).toFixed(0)}% px sampling` } : {}),
@@ -123,20 +154,24 @@ export async function runRenderCommand(command: RenderCommand, io: { stderr: Pro
     }
     progress.finish();
     await writeOutput(renderer, command);
-    const renderSeconds = renderMs / 1000;
+    // Rates over the frames after the first; a one-frame render has only the first to go by.
+    const steady = renderMs > 0;
+    const rateSeconds = (steady ? renderMs : firstFrameMs) / 1000;
     return {
       width: command.width,
       height: command.height,
       samplesPerPixel: accumulated,
-      meanSamplesPerPixel: pixelSamples / pixels,
+      meanSamplesPerPixel: (firstPixelSamples + pixelSamples) / pixels,
       stoppedBy,
       denoised: command.denoise,
       aovs: command.aovs,
-      renderSeconds,
+      firstFrameSeconds: firstFrameMs / 1000,
+      firstFrameSamplesPerPixel: firstSamples,
+      renderSeconds: renderMs / 1000,
       totalSeconds: (performance.now() - t0) / 1000,
-      samplesPerSecond: pixelSamples / renderSeconds,
-      rays,
-      raysPerSecond: rays / renderSeconds,
+      samplesPerSecond: (steady ? pixelSamples : firstPixelSamples) / rateSeconds,
+      rays: firstRays + rays,
+      raysPerSecond: (steady ? rays : firstRays) / rateSeconds,
       invalidSamples,
       adapter: renderer.getSnapshot().adapter,
       out: command.out,

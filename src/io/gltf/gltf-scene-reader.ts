@@ -35,6 +35,8 @@ export interface GltfLoadOptions {
    * camera framing the scene bounds (see `GltfScene.camera`).
    */
   camera?: number | string;
+  /** Image width / height the default camera frames the bounds for (assets without a camera); default 1. */
+  aspectRatio?: number;
   /** KHR_materials_variants variant name; an unknown name throws INVALID_OPTION (field `variant`). */
   variant?: string;
   /** The glTF scene (index or name); default the asset's default scene, else its first scene. */
@@ -56,8 +58,9 @@ export interface GltfLoadOptions {
  * - `materials` holds one entry per glTF material, in asset order, plus the glTF default material
  *   at the end when some primitive has none.
  * - `camera` is the chosen glTF camera; its aspect ratio is the renderer's width / height (the glTF
- *   aspectRatio is not used). Without a camera it frames the scene bounds: looking at their centre
- *   from +Z with a 45 degree vertical field of view, at the distance where the bounding sphere fits.
+ *   aspectRatio is not used). Without a camera it frames the scene bounds (`frameBounds`): a raised
+ *   three-quarter view of their centre (azimuth 30 degrees from +Z towards +X, elevation 25, 45
+ *   degree vertical field of view) at the nearest distance where the whole box is in view.
  */
 export interface GltfScene {
   meshes: WavefrontMeshInput[];
@@ -67,7 +70,7 @@ export interface GltfScene {
   images: WavefrontImageInput[];
   camera: WavefrontCameraInput;
   lights: WavefrontPunctualLightInput[];
-  /** Non-enumerable. Things skipped, converted or dropped (points and lines, 16-bit images, KTX2 textures, ...). */
+  /** Non-enumerable. Things skipped, converted or dropped (points and lines, skins, unsupported optional extensions, ...). */
   readonly warnings: readonly string[];
   /** Non-enumerable. Every camera placed in the scene, in node order. */
   readonly cameras: readonly GltfCameraInfo[];
@@ -267,7 +270,7 @@ export async function readGltfScene(source: GltfSource, options: GltfLoadOptions
     if (light !== null) lights.push(worldLight(light, world));
   }
   const bounds: GltfBounds | undefined = instances.length === 0 ? undefined : { min: boundsMin, max: boundsMax };
-  const camera = chooseCamera(cameras, options.camera, bounds);
+  const camera = chooseCamera(cameras, options.camera, bounds, options.aspectRatio);
   signal?.throwIfAborted();
 
   const scene = { meshes, instances, materials, textures: table.textures, images: table.images, camera, lights };
@@ -276,8 +279,8 @@ export async function readGltfScene(source: GltfSource, options: GltfLoadOptions
   return scene as GltfScene;
 }
 
-function chooseCamera(cameras: readonly GltfCameraInfo[], choice: number | string | undefined, bounds: GltfBounds | undefined): WavefrontCameraInput {
-  if (choice === undefined) return cameras[0]?.camera ?? framingCamera(bounds);
+function chooseCamera(cameras: readonly GltfCameraInfo[], choice: number | string | undefined, bounds: GltfBounds | undefined, aspectRatio: number | undefined): WavefrontCameraInput {
+  if (choice === undefined) return cameras[0]?.camera ?? framingCamera(bounds, aspectRatio);
   const found = typeof choice === 'number' ? cameras.find((c) => c.cameraIndex === choice) : (cameras.find((c) => c.nodeName === choice) ?? cameras.find((c) => c.name === choice));
   if (found === undefined) {
     const known = cameras.map((c) => `${c.cameraIndex} ${JSON.stringify(c.name)}`).join(', ');
