@@ -83,6 +83,7 @@ export async function runRenderCommand(command: RenderCommand, io: { stderr: Pro
     aovs: command.aovs.some((a) => a !== 'sampleCount'),
     denoise: command.denoise,
     energyCompensation: command.energyCompensation,
+    ...(command.accelerationBuildMode ? { accelerationBuildMode: command.accelerationBuildMode } : {}),
     ...(command.noiseThreshold !== undefined ? { adaptiveThreshold: command.noiseThreshold, minimumSamplesPerPixel } : {}),
     ...scene,
   });

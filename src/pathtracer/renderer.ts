@@ -28,7 +28,9 @@ import { WavefrontEncoder } from './frame-encoder.ts';
 import { GpuBufferSet, readGpuBuffer } from './gpu-buffers.ts';
 import { pathTracerPipelines, type PathTracerPipelines } from './pipelines.ts';
 import { FilmDisplay } from './presentation.ts';
-import { prepareScene, type PreparedScene } from './scene/prepare-scene.ts';
+import { prepareScene, sceneExtent, type PreparedScene } from './scene/prepare-scene.ts';
+import { SceneAcceleration } from './scene/scene-acceleration.ts';
+import { packGeometryUpdate, type WavefrontGeometryUpdate, type WavefrontGeometryUpdateStats } from './scene/geometry-update.ts';
 import { vertexStreamBytes } from './scene/pack-vertices.ts';
 import { materialFeatures } from './scene/material-features.ts';
 import { materialHeapCells } from './scene/pack-materials.ts';
@@ -137,7 +139,7 @@ export async function createWavefrontPathTracingComputeRenderer(options: Wavefro
     const limits = acquired.device.limits;
     const estimate = planInput(config, scene);
     checkBufferLimits(limits, planBuffers(estimate));
-    const prepared = await prepareScene(scene, { maxTextureDimension2D: limits.maxTextureDimension2D, maxTextureArrayLayers: limits.maxTextureArrayLayers }, { energyCompensation: config.energyCompensation });
+    const prepared = await prepareScene(scene, { maxTextureDimension2D: limits.maxTextureDimension2D, maxTextureArrayLayers: limits.maxTextureArrayLayers }, { energyCompensation: config.energyCompensation, accelerationBuildMode: config.accelerationBuildMode });
     const lighting = buildGpuLighting({ config: config.lighting, triangles: { records: prepared.lights, count: prepared.lightCount }, sceneCenter: prepared.sceneCenter, sceneRadius: prepared.sceneRadius });
     const plan = planBuffers({ ...estimate, materialCells: prepared.materials.byteLength / 16, lightCount: prepared.lightCount, lightHeapCells: lighting.heap.byteLength / 16, primitiveCount: prepared.primitiveCount });
     checkBufferLimits(limits, plan);
@@ -148,6 +150,12 @@ export async function createWavefrontPathTracingComputeRenderer(options: Wavefro
       config.output.denoise ? createDenoisePipelines(acquired.device, features) : null,
     ]);
     const renderer = new WavefrontRenderer(acquired, config, scene, prepared, lighting, { ...pipelines, adaptive: adaptivePipelines, denoise: denoisePipelines }, plan);
+    try {
+      await renderer.createAcceleration();
+    } catch (error) {
+      renderer.destroy();
+      throw error;
+    }
     if (canvas) await renderer.attachCanvas(canvas);
     return renderer;
   } catch (error) {
@@ -178,13 +186,15 @@ class WavefrontRenderer extends EventTarget implements WavefrontPathTracingRende
   private readonly ownsDevice: boolean;
   private readonly adapter: string;
   private config: WavefrontPathTracingComputeConfig;
-  private readonly scene: { instanceCount: number; sceneObjectCount: number; prepared: PreparedScene };
+  private readonly scene: { instanceCount: number; sceneObjectCount: number; prepared: PreparedScene; normalized: NormalizedScene };
+  /** The BVH on the device (build mode, refit and rebuild for geometry updates). */
+  private acceleration: SceneAcceleration | null = null;
   private readonly capacity: number;
   private readonly buffers: GpuBufferSet;
   private readonly resources: Record<PlannedBufferName, GPUBuffer>;
   private readonly atlasTexture: GPUTexture;
   private readonly environmentTexture: GPUTexture;
-  private readonly lighting: GpuLighting;
+  private lighting: GpuLighting;
   private readonly textureBytes: number;
   private readonly encoderOfWaves: WavefrontEncoder;
   private readonly display: FilmDisplay;
@@ -216,15 +226,16 @@ class WavefrontRenderer extends EventTarget implements WavefrontPathTracingRende
     this.ownsDevice = acquired.ownsDevice;
     this.adapter = acquired.adapterDescription;
     this.config = config;
-    this.scene = { instanceCount: scene.instances.length, sceneObjectCount: scene.sceneObjects.length, prepared };
+    this.scene = { instanceCount: scene.instances.length, sceneObjectCount: scene.sceneObjects.length, prepared, normalized: scene };
     this.capacity = queueCapacity(config.width, config.height, config.tileSize);
     this.lighting = lighting;
     const b = (this.buffers = new GpuBufferSet(device));
     const S = BufferUsage.STORAGE;
+    // The BVH buffers hold any tree of the scene (2n - 1 nodes), so a rebuild fits; in 'gpu' mode the
+    // GPU build fills them (scene-acceleration.ts).
+    const gpuBuild = prepared.acceleration.mode === 'gpu';
     const uploads: Partial<Record<PlannedBufferName, ArrayBuffer>> = {
-      primitives: prepared.primitives,
-      bvhNodes: prepared.bvhNodes,
-      bvhParents: prepared.bvhParents.buffer as ArrayBuffer,
+      ...(gpuBuild ? {} : { primitives: prepared.primitives, bvhNodes: prepared.bvhNodes, bvhParents: prepared.bvhParents.buffer as ArrayBuffer }),
       alphaPrimitives: prepared.alphaPrimitives,
       instances: prepared.instances,
       indices: prepared.indices.buffer as ArrayBuffer,
@@ -255,7 +266,12 @@ class WavefrontRenderer extends EventTarget implements WavefrontPathTracingRende
     const resources = {} as Record<PlannedBufferName, GPUBuffer>;
     for (const [name, p] of Object.entries(plan) as [PlannedBufferName, PlannedBuffer][]) {
       const data = uploads[name];
-      resources[name] = data ? b.upload(name, data, S, p.category) : b.create(name, p.bytes, usage[name] ?? S, p.category);
+      if (name === 'bvhNodes' || name === 'bvhParents') {
+        resources[name] = b.create(name, Math.max(p.bytes, data?.byteLength ?? 0), S | BufferUsage.COPY_DST, p.category);
+        if (data) device.queue.writeBuffer(resources[name], 0, data);
+      } else {
+        resources[name] = data ? b.upload(name, data, S, p.category) : b.create(name, p.bytes, usage[name] ?? S, p.category);
+      }
     }
     this.resources = resources;
     const atlas = uploadTextureAtlas(device, prepared.atlas);
@@ -289,6 +305,46 @@ class WavefrontRenderer extends EventTarget implements WavefrontPathTracingRende
       this.deviceLost = true;
       this.deviceLostMessage = info.message || String(info.reason);
     });
+  }
+
+  /** Uploads or builds the BVH (accelerationBuildMode); called once by the factory. */
+  async createAcceleration(): Promise<void> {
+    const r = this.resources;
+    this.acceleration = await SceneAcceleration.create(this.device, this.scene.prepared, { primitives: r.primitives, bvhNodes: r.bvhNodes, bvhParents: r.bvhParents }, this.buffers);
+  }
+
+  async updateGeometry(update: WavefrontGeometryUpdate): Promise<WavefrontGeometryUpdateStats> {
+    this.assertUsable();
+    const started = performance.now();
+    const p = this.scene.prepared;
+    const packed = packGeometryUpdate(this.scene.normalized, p, update);
+    const extent = sceneExtent(packed.scene, packed.flat);
+    const lighting = packed.lights
+      ? buildGpuLighting({ config: this.config.lighting, triangles: { records: packed.lights.records, count: packed.lights.count }, sceneCenter: extent.sceneCenter, sceneRadius: extent.sceneRadius })
+      : this.lighting;
+    if (lighting.heap.byteLength > this.resources.lights.size) {
+      throw new GpuRendererError('INVALID_STATE', 'the update changes the size of the light tables; create a new renderer for it', { field: 'meshes' });
+    }
+    const queue = this.device.queue;
+    if (packed.vertexStreams) queue.writeBuffer(this.resources.vertexStreams, 0, packed.vertexStreams);
+    if (packed.instances) {
+      queue.writeBuffer(this.resources.instances, 0, packed.instances);
+      p.instances = packed.instances;
+    }
+    if (packed.lights) {
+      queue.writeBuffer(this.resources.lights, 0, lighting.heap);
+      queue.writeBuffer(this.resources.lighting, 0, lighting.uniforms);
+      this.lighting = lighting;
+      p.lights = packed.lights.records;
+      p.lightPower = packed.lights.totalPower;
+    }
+    this.scene.normalized = packed.scene;
+    p.sceneCenter = extent.sceneCenter;
+    p.sceneRadius = extent.sceneRadius;
+    this.writeFrameUniforms();
+    const accelerationMs = await this.acceleration!.update(packed.flat, packed.bvh);
+    this.resetAccumulation();
+    return { bvh: packed.bvh, accelerationMs, totalMs: performance.now() - started };
   }
 
   private writeFrameUniforms(): void {
@@ -660,6 +716,7 @@ class WavefrontRenderer extends EventTarget implements WavefrontPathTracingRende
     this.destroyed = true;
     this.display.detach();
     this.timing?.querySet.destroy();
+    this.acceleration?.destroy();
     this.buffers.destroy();
     this.atlasTexture.destroy();
     this.environmentTexture.destroy();

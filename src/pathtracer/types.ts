@@ -2,6 +2,8 @@ import type { WavefrontLightingOptions, WavefrontSceneLightInput } from '../ligh
 import type { WavefrontAovName } from '../post/aovs.ts';
 import type { WavefrontCameraInput, WavefrontSceneDescription, WavefrontToneMapping } from '../scene/types.ts';
 import type { WavefrontOutputOptions, WavefrontRenderFrameOptions } from './output-options.ts';
+import type { AccelerationBuildMode } from './scene/prepare-scene.ts';
+import type { WavefrontGeometryUpdate, WavefrontGeometryUpdateStats } from './scene/geometry-update.ts';
 import type {
   WavefrontAdaptiveFrameStats,
   WavefrontGpuParallelism,
@@ -14,6 +16,10 @@ import type {
 export type { WavefrontOutputOptions, WavefrontRenderFrameOptions } from './output-options.ts';
 export type * from './output-types.ts';
 export type { WavefrontFeatureFlagState, WavefrontTransportExperimentState, WavefrontFeatureFlagResolution, TransportExperimentName } from './feature-flags.ts';
+
+export type { AccelerationBuildMode } from './scene/prepare-scene.ts';
+export type { WavefrontGeometryUpdate, WavefrontGeometryUpdateStats, WavefrontMeshGeometryUpdate, WavefrontInstanceTransformUpdate } from './scene/geometry-update.ts';
+export type { BvhUpdateMode } from './scene/scene-acceleration.ts';
 
 export type CanvasTarget = HTMLCanvasElement | OffscreenCanvas | string;
 
@@ -60,6 +66,14 @@ export interface WavefrontPathTracingOptions extends Omit<WavefrontSceneDescript
    * at grazing angles on rough dielectrics.
    */
   energyCompensation?: boolean;
+  /**
+   * Where the BVH is built. 'cpu-upload' (default): top-down binned SAH on the CPU (worker threads
+   * for large meshes), uploaded once. 'gpu': an LBVH built by WGSL compute passes on the device
+   * (Morton codes, radix sort, Karras 2012 hierarchy, SAH leaf collapse), for a real GPU where
+   * building dominates; its tree's SAH cost is about 25-30 % above the CPU build's (README,
+   * Performance). Both are traced by the same kernels and render the same image.
+   */
+  accelerationBuildMode?: AccelerationBuildMode;
   canvas?: CanvasTarget;
   /** Share a device; otherwise one is acquired (Dawn in Node.js). */
   device?: GPUDevice;
@@ -187,6 +201,14 @@ export interface WavefrontPathTracingRenderer extends EventTarget {
   /** Submits one frame's work without waiting for it (no frameTimeBudgetMs). */
   renderOnce(options?: WavefrontRenderFrameOptions): void;
   updateCamera(camera: WavefrontCameraInput): void;
+  /**
+   * Moves the scene's geometry without recreating the renderer (the next pose of an animation):
+   * new positions (normals, tangents) of its meshes and new instance transforms, topology kept.
+   * The BVH is refitted on the GPU (default) or rebuilt (`bvh: 'rebuild'`), the light tables
+   * follow, and the accumulation restarts. Validated before anything changes: a refused update
+   * (typed error naming the field) leaves the renderer as it was.
+   */
+  updateGeometry(update: WavefrontGeometryUpdate): Promise<WavefrontGeometryUpdateStats>;
   /** The raw linear mean radiance, RGBA float32 (alpha 1), top row first: never denoised. */
   readRadiance(): Promise<WavefrontRadianceImage>;
   /** The denoised linear radiance of the accumulation (needs `denoise`), RGBA float32 (alpha 1). */

@@ -50,6 +50,13 @@ test('glTF scenes: --camera and --variant', () => {
   rejects(['render', 'a.glb', '--variant'], '--variant', /expects a value/);
 });
 
+test('--bvh-build chooses where the BVH is built', () => {
+  assert.equal(render(['--bvh-build', 'gpu']).accelerationBuildMode, 'gpu');
+  assert.equal(render(['--bvh-build=cpu-upload']).accelerationBuildMode, 'cpu-upload');
+  assert.equal(render([]).accelerationBuildMode, undefined);
+  rejects(['render', '--bvh-build', 'fpga'], '--bvh-build', /cpu-upload or gpu/);
+});
+
 test('samples per frame never exceeds the target unless given', () => {
   assert.equal(render(['--spp', '2']).sppPerFrame, 2);
   assert.equal(render(['--spp', '100']).sppPerFrame, renderDefaults.sppPerFrame);
