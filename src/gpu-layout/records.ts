@@ -20,7 +20,7 @@ export const primitiveLayout: StructLayout = defineStructLayout('Primitive', 2, 
   ['e1', 'vec3f', 'v1 - v0'],
   ['primitive', 'u32', 'triangle index within the instance mesh'],
   ['e2', 'vec3f', 'v2 - v0'],
-  ['shape', 'u32', 'kind | PRIMITIVE_FLAG_ALPHA | alpha record index << PRIMITIVE_ALPHA_SHIFT'],
+  ['shape', 'u32', 'kind | PRIMITIVE_FLAG_ALPHA | PRIMITIVE_FLAG_SINGLE_SIDED | PRIMITIVE_FLAG_MIRRORED | alpha record index << PRIMITIVE_ALPHA_SHIFT'],
 ]);
 
 /** Flattened BVH node: interior nodes keep both children adjacent at leftOrFirst, leftOrFirst + 1. */
