@@ -170,7 +170,7 @@ export async function runRenderCommand(command: RenderCommand, io: { stderr: Pro
       samplesPerPixel: accumulated,
       meanSamplesPerPixel: (firstPixelSamples + pixelSamples) / pixels,
       stoppedBy,
-      denoised: command.denoise,
+      ...(command.denoise ? { denoised: renderer.getSnapshot().denoise!.denoiser } : {}),
       aovs: command.aovs,
       firstFrameSeconds: firstFrameMs / 1000,
       firstFrameSamplesPerPixel: firstSamples,

@@ -18,7 +18,8 @@ import { resolveCanvasTarget } from './canvas-target.ts';
 import { createWavefrontPathTracingComputeConfig, type WavefrontPathTracingComputeConfig } from './config.ts';
 import { instanceMaterial } from './scene/flatten-primitives.ts';
 import { AdaptiveScheduler, createAdaptivePipelines } from './adaptive-scheduler.ts';
-import { AtrousDenoisePass, createDenoisePipelines } from './denoise-pass.ts';
+import type { WavefrontDenoiser, WavefrontDenoiserFactory } from '../post/denoise/denoiser.ts';
+import { prepareWavefrontDenoiser, resolveWavefrontDenoiser } from './denoise-pass.ts';
 import { DispatchTally } from './dispatch-tally.ts';
 import { readAovImage, readMeanRadiance, readRgbaImage, type InstanceIds } from './film.ts';
 import { encodeFrameReadback, frameStatsFromCounters, readFrameReadback } from './frame-stats.ts';
@@ -63,7 +64,7 @@ function planInput(config: WavefrontPathTracingComputeConfig, scene: NormalizedS
     tileSize: config.tileSize,
     maxDepth: config.maxDepth,
     aovs: outputFeatures(config).aovs,
-    output: { moments: outputFeatures(config).moments, adaptive: config.output.adaptive !== null, denoise: config.output.denoise !== null },
+    output: { moments: outputFeatures(config).moments, adaptive: config.output.adaptive !== null, denoise: config.output.denoise !== null, atrous: config.output.denoise?.denoiser === 'atrous' },
     wavesPerSubmission: config.output.maxFramePassesPerSubmission,
     ...vertexStreamBytes(scene.meshes),
     primitiveCount: scene.triangleCount + scene.sceneObjects.length,
@@ -95,7 +96,7 @@ function instanceIdTables(scene: NormalizedScene, prepared: PreparedScene): Inst
 /** Output accumulation the options need: the denoiser's guides are the AOVs, its variance the moments. */
 function outputFeatures(config: WavefrontPathTracingComputeConfig): { aovs: boolean; moments: boolean } {
   const denoise = config.output.denoise !== null;
-  return { aovs: config.aovs || denoise, moments: config.aovs || denoise || config.output.adaptive !== null };
+  return { aovs: config.aovs || denoise, moments: config.aovs || config.output.denoise?.denoiser === 'atrous' || config.output.adaptive !== null };
 }
 
 /** The shader features a scene needs; everything else is compiled out. */
@@ -136,6 +137,7 @@ export async function createWavefrontPathTracingComputeRenderer(options: Wavefro
     ...(options.powerPreference !== undefined ? { powerPreference: options.powerPreference } : {}),
   });
   try {
+    resolveWavefrontDenoiser(config.output, acquired.device);
     const limits = acquired.device.limits;
     const estimate = planInput(config, scene);
     checkBufferLimits(limits, planBuffers(estimate));
@@ -147,7 +149,7 @@ export async function createWavefrontPathTracingComputeRenderer(options: Wavefro
     const [pipelines, adaptivePipelines, denoisePipelines] = await Promise.all([
       pathTracerPipelines(acquired.device, features),
       config.output.adaptive ? createAdaptivePipelines(acquired.device, features) : null,
-      config.output.denoise ? createDenoisePipelines(acquired.device, features) : null,
+      config.output.denoise ? prepareWavefrontDenoiser(acquired.device, config.output.denoise, config.output.denoiseWeights, features) : null,
     ]);
     const renderer = new WavefrontRenderer(acquired, config, scene, prepared, lighting, { ...pipelines, adaptive: adaptivePipelines, denoise: denoisePipelines }, plan);
     try {
@@ -169,7 +171,7 @@ export const adaptiveStepSamples = 4;
 
 type RendererPipelines = PathTracerPipelines & {
   adaptive: Awaited<ReturnType<typeof createAdaptivePipelines>> | null;
-  denoise: Awaited<ReturnType<typeof createDenoisePipelines>> | null;
+  denoise: WavefrontDenoiserFactory | null;
 };
 
 /** What one frame's passes produced, before the statistics are read back. */
@@ -200,7 +202,7 @@ class WavefrontRenderer extends EventTarget implements WavefrontPathTracingRende
   private readonly display: FilmDisplay;
   private readonly timing: { querySet: GPUQuerySet; resolve: GPUBuffer } | null;
   private readonly adaptive: AdaptiveScheduler | null;
-  private readonly denoiser: AtrousDenoisePass | null;
+  private readonly denoiser: WavefrontDenoiser | null;
   private readonly instanceIds: InstanceIds;
   private frameCount = 0;
   private samplesAccumulated = 0;
@@ -293,7 +295,7 @@ class WavefrontRenderer extends EventTarget implements WavefrontPathTracingRende
     this.display = new FilmDisplay(device, pipelines.resolve, map, out.denoise ? resources.denoised : undefined);
     if (out.denoise?.present === 'denoised') this.display.source = 'denoised';
     this.adaptive = out.adaptive && pipelines.adaptive ? new AdaptiveScheduler(device, pipelines.adaptive, map, out.adaptive, config.width, config.height) : null;
-    this.denoiser = out.denoise && pipelines.denoise ? new AtrousDenoisePass(device, pipelines.denoise, map, out.denoise, config.width, config.height, b) : null;
+    this.denoiser = pipelines.denoise?.create({ device, width: config.width, height: config.height, resources: map, createBuffer: (label, size, usage) => b.create(label, size, usage, 'frame') }) ?? null;
     this.adaptive?.reset();
     this.instanceIds = instanceIdTables(scene, prepared);
     device.queue.writeBuffer(resources.bounce, 0, packBounceUniforms(config.maxDepth, this.capacity));
@@ -719,6 +721,7 @@ class WavefrontRenderer extends EventTarget implements WavefrontPathTracingRende
     this.display.detach();
     this.timing?.querySet.destroy();
     this.acceleration?.destroy();
+    this.denoiser?.destroy();
     this.buffers.destroy();
     this.atlasTexture.destroy();
     this.environmentTexture.destroy();

@@ -109,7 +109,7 @@ test('a normal-mapped primitive whose triangles all have zero area loads (the mi
     const scene = await loadGltfScene(bytes(json));
     const t = scene.meshes[0]!.tangents!;
     assert.equal(t.length, 4 * (scene.meshes[0]!.positions.length / 3));
-    for (let v = 0; v < t.length; v += 4) assert.ok(Math.abs(Math.hypot(t[v]!, t[v + 1]!, t[v + 2]!) - 1) < 1e-6 && t[v + 3] === 1, `tangent ${v / 4}`);
+    for (let v = 0; v < t.length; v += 4) assert.ok(Math.abs(Math.hypot(t[v]!, t[v + 1]!, t[v + 2]!) - 1) < 1e-6 && Math.abs(t[v + 3]!) === 1, `tangent ${v / 4}`);
   }
 });
 
