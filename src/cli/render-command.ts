@@ -18,6 +18,7 @@ import { defaultAdaptiveSamplingParameters } from '../post/adaptive-sampling/con
 import { createProgressBar, type ProgressStream } from './progress.ts';
 import type { RenderSummary } from './render-format.ts';
 import { isGltfPath, type RenderCommand } from './args.ts';
+import type { ResourcePolicy } from '../io/resource-policy.ts';
 
 export type { RenderSummary } from './render-format.ts';
 
@@ -27,13 +28,14 @@ export type { RenderSummary } from './render-format.ts';
  */
 export async function loadScene(
   scenePath: string | undefined,
-  options: { camera?: string; variant?: string; stderr?: ProgressStream; aspectRatio?: number; negativeTexels?: 'zero' | 'error' } = {},
+  options: { camera?: string; variant?: string; stderr?: ProgressStream; aspectRatio?: number; negativeTexels?: 'zero' | 'error'; resourcePolicy?: ResourcePolicy } = {},
 ): Promise<WavefrontSceneDescription & { environmentMap?: EnvironmentMapInput }> {
   if (scenePath === undefined) return createCornellBoxScene();
+  const resourcePolicy = options.resourcePolicy;
   if (isGltfPath(scenePath)) {
     // Loaded on demand so JSON scenes never pull in the glTF reader and its decoders.
     const { loadGltfScene } = await import('../io/gltf/load-gltf-scene.ts');
-    const gltf = await loadGltfScene(scenePath, { camera: options.camera, variant: options.variant, ...(options.aspectRatio !== undefined ? { aspectRatio: options.aspectRatio } : {}) });
+    const gltf = await loadGltfScene(scenePath, { camera: options.camera, variant: options.variant, resourcePolicy, ...(options.aspectRatio !== undefined ? { aspectRatio: options.aspectRatio } : {}) });
     for (const warning of gltf.warnings) options.stderr?.write(`warning: ${warning}\n`);
     // Spreading keeps the renderer's scene keys only; the loader's metadata is non-enumerable.
     return { ...gltf };
@@ -42,6 +44,7 @@ export async function loadScene(
   const { loadSceneFile } = await import('../io/scene-file-loader.ts');
   const file = await loadSceneFile(scenePath, {
     negativeTexels: options.negativeTexels ?? 'error',
+    resourcePolicy,
     onNegativeTexels: (report, field) => {
       const text = negativeTexelNote(field, report);
       if (text !== undefined) options.stderr?.write(`note: ${text}\n`);
@@ -61,14 +64,17 @@ export function cliMinimumSamples(command: RenderCommand): number | undefined {
 
 export async function runRenderCommand(command: RenderCommand, io: { stderr: ProgressStream } = { stderr: process.stderr }): Promise<RenderSummary> {
   const t0 = performance.now();
+  // What the scene's references may touch: their own folder, and the origins --allow-origin names.
+  const resourcePolicy: ResourcePolicy = { allowedOrigins: command.allowedOrigins ?? [] };
   const loaded = await loadScene(command.scenePath, {
     camera: command.camera,
     variant: command.variant,
     stderr: io.stderr,
     aspectRatio: command.width / command.height,
     negativeTexels: command.negativeTexels,
+    resourcePolicy,
   });
-  const lit = await applyEnvironmentFlags(loaded, command, (text) => io.stderr.write(`note: ${text}\n`));
+  const lit = await applyEnvironmentFlags(loaded, command, (text) => io.stderr.write(`note: ${text}\n`), resourcePolicy);
   const scene = applyCameraFlags(lit, command);
   const minimumSamplesPerPixel = cliMinimumSamples(command);
   const renderer: WavefrontPathTracingRenderer = await createWavefrontPathTracingComputeRenderer({

@@ -26,6 +26,9 @@ import { flattenNodes } from './node-flattening.ts';
 import { withMikkTSpaceTangents } from './tangents.ts';
 import { TextureTable } from './textures.ts';
 import { listVariants, selectVariant, variantMaterial } from './variants.ts';
+import { validateGltfLoadOptions } from './load-options.ts';
+import { acceptScene, type SceneOrigins } from './scene-acceptance.ts';
+import { resolveResourcePolicy, type ResourcePolicy } from '../resource-policy.ts';
 import type { VertexStreams } from './vertex-streams.ts';
 
 export interface GltfLoadOptions {
@@ -45,6 +48,11 @@ export interface GltfLoadOptions {
   signal?: AbortSignal;
   /** Decoder modules for KHR_draco_mesh_compression / EXT_meshopt_compression (loaded on demand in Node). */
   decoders?: GltfDecoderModules;
+  /**
+   * What the asset may read and how much it may decode (src/io/resource-policy.ts): by default
+   * references stay in the asset's folder, no other origin is fetched, 2 GiB are decoded at most.
+   */
+  resourcePolicy?: ResourcePolicy;
 }
 
 /**
@@ -160,11 +168,13 @@ function gpuInstances(node: Node, at: string): Mat4[] | undefined {
 }
 
 /** The body of `loadGltfScene` (load-gltf-scene.ts), loaded on its first call. */
-export async function readGltfScene(source: GltfSource, options: GltfLoadOptions = {}): Promise<GltfScene> {
+export async function readGltfScene(source: GltfSource, rawOptions: GltfLoadOptions = {}): Promise<GltfScene> {
+  const options = validateGltfLoadOptions(rawOptions);
   const { signal } = options;
   signal?.throwIfAborted();
+  const policy = await resolveResourcePolicy(options.resourcePolicy);
   const warnings: string[] = [];
-  const { document } = await readGltfDocument(source, warnings, { signal, decoders: options.decoders });
+  const { document } = await readGltfDocument(source, warnings, { signal, decoders: options.decoders, policy });
   signal?.throwIfAborted();
   const root = document.getRoot();
   const extensionsUsed = root.listExtensionsUsed().map((e) => e.extensionName);
@@ -176,12 +186,14 @@ export async function readGltfScene(source: GltfSource, options: GltfLoadOptions
   const { roots } = pickScene(document, options.scene, warnings);
   const flat = flattenNodes(roots, nodeIndex);
 
-  const table = new TextureTable(root.listTextures(), warnings);
+  const table = new TextureTable(root.listTextures(), warnings, policy);
   const materials: WavefrontMaterialInput[] = [];
   const gltfMaterials = root.listMaterials();
   for (let i = 0; i < gltfMaterials.length; i++) materials.push(await mapMaterial(gltfMaterials[i], pointer('materials', i), table));
   const materialIndex = indexMap(gltfMaterials);
   let defaultMaterial: number | undefined;
+  // Where each scene entry came from, for errors the renderer's validation raises (scene-acceptance.ts).
+  const origins: SceneOrigins = { meshes: [], materials: gltfMaterials.map((_, i) => pointer('materials', i)), instances: [], lights: [], images: [] };
   signal?.throwIfAborted();
 
   const meshes: WavefrontMeshInput[] = [];
@@ -212,12 +224,17 @@ export async function readGltfScene(source: GltfSource, options: GltfLoadOptions
           warnings.push(`${at}: no TEXCOORD_${texCoord} for MikkTSpace tangents; the normal map cannot be applied`);
         } else {
           if (streams.normals === undefined) warnings.push(`${at}: flat normals computed for MikkTSpace tangents (the primitive has no NORMAL)`);
-          streams = await withMikkTSpaceTangents(streams, texCoord);
+          try {
+            streams = await withMikkTSpaceTangents(streams, texCoord);
+          } catch (error) {
+            failGltf(at, `MikkTSpace tangents could not be generated for the normal map (${(error as Error).message})`, error);
+          }
         }
       }
       const name = mesh.getName();
       const entry: WavefrontMeshInput = { id: `${name === '' ? `mesh ${m}` : name}/${p}`, ...streams, material };
       meshes.push(entry);
+      origins.meshes.push(at);
       entries.push({ index: meshes.length - 1, ...localBounds(streams.positions) });
     }
     meshCache.set(key, entries);
@@ -249,6 +266,7 @@ export async function readGltfScene(source: GltfSource, options: GltfLoadOptions
         for (const entry of entries) {
           const id = `${name === '' ? `node ${index}` : name}${locals === undefined ? '' : `#${k}`}`;
           instances.push({ id, mesh: entry.index, transform });
+          origins.instances.push(at);
           for (let c = 0; c < 8; c++) {
             const corner = [c & 1 ? entry.max[0] : entry.min[0], c & 2 ? entry.max[1] : entry.min[1], c & 4 ? entry.max[2] : entry.min[2]];
             const p = transformPoint(transform, corner);
@@ -267,13 +285,18 @@ export async function readGltfScene(source: GltfSource, options: GltfLoadOptions
       cameras.push({ name: camera.getName() === '' ? fallback : camera.getName(), cameraIndex: ci, nodeIndex: index, nodeName: name, camera: cameraFromNode(camera, world) });
     }
     const light = node.getExtension<Light>('KHR_lights_punctual');
-    if (light !== null) lights.push(worldLight(light, world));
+    if (light !== null) {
+      lights.push(worldLight(light, world));
+      origins.lights.push(`${at}/extensions/KHR_lights_punctual`);
+    }
   }
   const bounds: GltfBounds | undefined = instances.length === 0 ? undefined : { min: boundsMin, max: boundsMax };
   const camera = chooseCamera(cameras, options.camera, bounds, options.aspectRatio);
   signal?.throwIfAborted();
 
   const scene = { meshes, instances, materials, textures: table.textures, images: table.images, camera, lights };
+  const chosen = cameras.find((c) => c.camera === camera);
+  acceptScene(scene, origins, [{ camera, at: chosen === undefined ? '' : pointer('nodes', chosen.nodeIndex) }]);
   const metadata = { warnings, cameras, variants: listVariants(document).map((v) => v.getName()), bounds, extensionsUsed, document };
   for (const [key, value] of Object.entries(metadata)) Object.defineProperty(scene, key, { value, enumerable: false, writable: false, configurable: true });
   return scene as GltfScene;
