@@ -134,7 +134,8 @@ export async function resolveGltfReferences(
     } catch (error) {
       if (!isGpuRendererError(error)) throw error;
       const message = error.field ? error.message.slice(error.field.length + 2) : error.message;
-      throw new GpuRendererError(error.code, `in ${label}: ${message}`, error.field === undefined ? { cause: error } : { field: error.field, cause: error });
+      // A fault of the file as a whole (unreadable, not a glTF) names the reference that led to it.
+      throw new GpuRendererError(error.code, `in ${label}: ${message}`, { field: error.field ? error.field : site.field, cause: error });
     }
     for (const w of gltf.warnings) warnings.push(`${label}: ${w}`);
     const m = ref.transform ?? [...IDENTITY];
