@@ -10,9 +10,9 @@ import { uploadTextureAtlas } from '../materials/textures/upload-texture-atlas.t
 import { isWavefrontAovName, wavefrontAovNames, type WavefrontAovName } from '../post/aovs.ts';
 import { normalizeWavefrontScene, type NormalizedScene } from '../scene/normalize-scene.ts';
 import type { WavefrontCameraInput } from '../scene/types.ts';
-import { allShaderFeatures, type ShaderFeatures } from '../shaders/features.ts';
+import { allShaderFeatures } from '../shaders/features.ts';
 import { createKernelBindGroups, type PathTracerResourceMap } from './bind-groups.ts';
-import { checkBufferLimits, planBuffers, queueCapacity, type BufferPlanInput, type PlannedBuffer, type PlannedBufferName } from './buffer-plan.ts';
+import { checkBufferLimits, planBuffers, queueCapacity, type PlannedBuffer, type PlannedBufferName } from './buffer-plan.ts';
 import { normalizeWavefrontCamera } from './camera.ts';
 import { resolveCanvasTarget } from './canvas-target.ts';
 import { createWavefrontPathTracingComputeConfig, type WavefrontPathTracingComputeConfig } from './config.ts';
@@ -28,10 +28,9 @@ import { WavefrontEncoder } from './frame-encoder.ts';
 import { GpuBufferSet, readGpuBuffer } from './gpu-buffers.ts';
 import { pathTracerPipelines, type PathTracerPipelines } from './pipelines.ts';
 import { FilmDisplay } from './presentation.ts';
-import { prepareScene, type PreparedScene } from './scene/prepare-scene.ts';
-import { vertexStreamBytes } from './scene/pack-vertices.ts';
-import { materialFeatures } from './scene/material-features.ts';
-import { materialHeapCells } from './scene/pack-materials.ts';
+import { prepareGeometry, prepareMaterials, type PreparedScene } from './scene/prepare-scene.ts';
+import { lightingOptionsOf, prepareSceneUpdate, type SceneSources } from './scene-update.ts';
+import { planInput, sceneFeatures } from './scene-plan.ts';
 import { planListWaves, planWaves, tileCount, type Wave } from './tiling.ts';
 import type {
   WavefrontFrameStats,
@@ -42,36 +41,9 @@ import type {
   WavefrontRadianceImage,
   WavefrontRenderFrameOptions,
   WavefrontRendererSnapshot,
+  WavefrontSceneUpdate,
 } from './types.ts';
 import { packBounceUniforms, packDisplayUniforms, packFrameUniforms, packWaveUniforms } from './uniforms.ts';
-
-/** Sizes known from the validated scene, before the BVH is built: what the first limit check uses. */
-function planInput(config: WavefrontPathTracingComputeConfig, scene: NormalizedScene): BufferPlanInput {
-  let alpha = 0;
-  let lights = 0;
-  for (const inst of scene.instances) {
-    const material = scene.materials[inst.material ?? scene.meshMaterials[inst.mesh]!]!;
-    const triangles = scene.meshes[inst.mesh]!.triangleCount;
-    if (material.alphaMode !== 'OPAQUE') alpha += triangles;
-    if (material.emission.some((c) => c > 0)) lights += triangles;
-  }
-  return {
-    width: config.width,
-    height: config.height,
-    tileSize: config.tileSize,
-    maxDepth: config.maxDepth,
-    aovs: outputFeatures(config).aovs,
-    output: { moments: outputFeatures(config).moments, adaptive: config.output.adaptive !== null, denoise: config.output.denoise !== null },
-    wavesPerSubmission: config.output.maxFramePassesPerSubmission,
-    ...vertexStreamBytes(scene.meshes),
-    primitiveCount: scene.triangleCount + scene.sceneObjects.length,
-    alphaPrimitiveCount: alpha,
-    instanceCount: scene.instances.length + scene.sceneObjects.length,
-    lightCount: lights,
-    // Cores, extension blocks and texture bindings (the exact heap, tables included, is checked after packing).
-    materialCells: materialHeapCells([...scene.materials, ...scene.sceneObjects.map((o) => o.material)]),
-  };
-}
 
 /**
  * Object id (the packed instance record's objectId: the instance's numeric id, else its index) and
@@ -88,33 +60,6 @@ function instanceIdTables(scene: NormalizedScene, prepared: PreparedScene): Inst
   // Analytic scene objects own their materials, numbered after the scene's.
   scene.sceneObjects.forEach((_, k) => (materialIds[scene.instances.length + k] = scene.materials.length + k));
   return { objectIds, materialIds };
-}
-
-/** Output accumulation the options need: the denoiser's guides are the AOVs, its variance the moments. */
-function outputFeatures(config: WavefrontPathTracingComputeConfig): { aovs: boolean; moments: boolean } {
-  const denoise = config.output.denoise !== null;
-  return { aovs: config.aovs || denoise, moments: config.aovs || denoise || config.output.adaptive !== null };
-}
-
-/** The shader features a scene needs; everything else is compiled out. */
-function sceneFeatures(prepared: PreparedScene, lighting: GpuLighting, config: WavefrontPathTracingComputeConfig): ShaderFeatures {
-  return {
-    FEATURE_ANALYTIC_SHAPES: prepared.uses.analyticShapes,
-    FEATURE_ALPHA_TEST: prepared.uses.alphaTest,
-    FEATURE_TEXTURES: prepared.uses.textures,
-    FEATURE_EMISSIVE_LIGHTS: prepared.uses.emissiveLights,
-    FEATURE_ENVIRONMENT: lighting.uses.environment,
-    FEATURE_ENVIRONMENT_MAP: lighting.uses.environmentMap,
-    FEATURE_SUN: lighting.uses.sun,
-    FEATURE_PORTALS: lighting.uses.portals,
-    FEATURE_PUNCTUAL_LIGHTS: lighting.uses.punctualLights,
-    FEATURE_AREA_LIGHTS: lighting.uses.areaLights,
-    FEATURE_LIGHT_TREE: lighting.uses.lightTree,
-    FEATURE_AOVS: outputFeatures(config).aovs,
-    FEATURE_FILM_MOMENTS: outputFeatures(config).moments,
-    FEATURE_ADAPTIVE_SAMPLING: config.output.adaptive !== null,
-    ...materialFeatures(prepared.uses.materials),
-  };
 }
 
 /**
@@ -137,7 +82,8 @@ export async function createWavefrontPathTracingComputeRenderer(options: Wavefro
     const limits = acquired.device.limits;
     const estimate = planInput(config, scene);
     checkBufferLimits(limits, planBuffers(estimate));
-    const prepared = await prepareScene(scene, { maxTextureDimension2D: limits.maxTextureDimension2D, maxTextureArrayLayers: limits.maxTextureArrayLayers }, { energyCompensation: config.energyCompensation });
+    const materials = prepareMaterials(scene, { maxTextureDimension2D: limits.maxTextureDimension2D, maxTextureArrayLayers: limits.maxTextureArrayLayers }, { energyCompensation: config.energyCompensation });
+    const prepared = await prepareGeometry(scene, materials);
     const lighting = buildGpuLighting({ config: config.lighting, triangles: { records: prepared.lights, count: prepared.lightCount }, sceneCenter: prepared.sceneCenter, sceneRadius: prepared.sceneRadius });
     const plan = planBuffers({ ...estimate, materialCells: prepared.materials.byteLength / 16, lightCount: prepared.lightCount, lightHeapCells: lighting.heap.byteLength / 16, primitiveCount: prepared.primitiveCount });
     checkBufferLimits(limits, plan);
@@ -147,7 +93,8 @@ export async function createWavefrontPathTracingComputeRenderer(options: Wavefro
       config.output.adaptive ? createAdaptivePipelines(acquired.device, features) : null,
       config.output.denoise ? createDenoisePipelines(acquired.device, features) : null,
     ]);
-    const renderer = new WavefrontRenderer(acquired, config, scene, prepared, lighting, { ...pipelines, adaptive: adaptivePipelines, denoise: denoisePipelines }, plan);
+    const sources: SceneSources = { scene, materials, features, lightingOptions: lightingOptionsOf(options) };
+    const renderer = new WavefrontRenderer(acquired, config, sources, prepared, lighting, { ...pipelines, adaptive: adaptivePipelines, denoise: denoisePipelines }, plan);
     if (canvas) await renderer.attachCanvas(canvas);
     return renderer;
   } catch (error) {
@@ -178,20 +125,24 @@ class WavefrontRenderer extends EventTarget implements WavefrontPathTracingRende
   private readonly ownsDevice: boolean;
   private readonly adapter: string;
   private config: WavefrontPathTracingComputeConfig;
-  private readonly scene: { instanceCount: number; sceneObjectCount: number; prepared: PreparedScene };
+  private scene: { instanceCount: number; sceneObjectCount: number; prepared: PreparedScene };
+  /** What updateScene rebuilds geometry from: the normalized scene, the packed materials, the compiled features. */
+  private sources: SceneSources;
+  private readonly kernels: PathTracerPipelines['kernels'];
   private readonly capacity: number;
   private readonly buffers: GpuBufferSet;
   private readonly resources: Record<PlannedBufferName, GPUBuffer>;
+  private readonly resourceMap: PathTracerResourceMap;
   private readonly atlasTexture: GPUTexture;
   private readonly environmentTexture: GPUTexture;
-  private readonly lighting: GpuLighting;
+  private lighting: GpuLighting;
   private readonly textureBytes: number;
-  private readonly encoderOfWaves: WavefrontEncoder;
+  private encoderOfWaves: WavefrontEncoder;
   private readonly display: FilmDisplay;
   private readonly timing: { querySet: GPUQuerySet; resolve: GPUBuffer } | null;
   private readonly adaptive: AdaptiveScheduler | null;
   private readonly denoiser: AtrousDenoisePass | null;
-  private readonly instanceIds: InstanceIds;
+  private instanceIds: InstanceIds;
   private frameCount = 0;
   private samplesAccumulated = 0;
   /** Pixel samples in the accumulation (differs from pixels x samplesAccumulated with adaptive sampling). */
@@ -205,7 +156,7 @@ class WavefrontRenderer extends EventTarget implements WavefrontPathTracingRende
   constructor(
     acquired: { device: GPUDevice; ownsDevice: boolean; adapterDescription: string; timestampQueries: boolean },
     config: WavefrontPathTracingComputeConfig,
-    scene: NormalizedScene,
+    sources: SceneSources,
     prepared: PreparedScene,
     lighting: GpuLighting,
     pipelines: RendererPipelines,
@@ -216,6 +167,9 @@ class WavefrontRenderer extends EventTarget implements WavefrontPathTracingRende
     this.ownsDevice = acquired.ownsDevice;
     this.adapter = acquired.adapterDescription;
     this.config = config;
+    const scene = sources.scene;
+    this.sources = sources;
+    this.kernels = pipelines.kernels;
     this.scene = { instanceCount: scene.instances.length, sceneObjectCount: scene.sceneObjects.length, prepared };
     this.capacity = queueCapacity(config.width, config.height, config.tileSize);
     this.lighting = lighting;
@@ -272,6 +226,7 @@ class WavefrontRenderer extends EventTarget implements WavefrontPathTracingRende
       displayFilm: resources.film,
       displayPixels: resources.displayPixels,
     };
+    this.resourceMap = map;
     this.encoderOfWaves = new WavefrontEncoder(createKernelBindGroups(device, pipelines.kernels, map), resources.dispatchArgs, this.capacity);
     const out = config.output;
     this.display = new FilmDisplay(device, pipelines.resolve, map, out.denoise ? resources.denoised : undefined);
@@ -567,6 +522,43 @@ class WavefrontRenderer extends EventTarget implements WavefrontPathTracingRende
   updateCamera(camera: WavefrontCameraInput): void {
     this.assertUsable();
     this.config = { ...this.config, camera: normalizeWavefrontCamera(camera) };
+    this.writeFrameUniforms();
+    this.resetAccumulation();
+  }
+
+  async updateScene(update: WavefrontSceneUpdate): Promise<void> {
+    this.assertUsable();
+    const next = await prepareSceneUpdate(this.sources, this.config, update, this.device.limits);
+    this.assertUsable();
+    // Every check passed: from here on nothing throws for the input.
+    const p = next.prepared;
+    let rebind = false;
+    const write = (name: PlannedBufferName, data: ArrayBuffer | ArrayBufferView): void => {
+      const bytes = ArrayBuffer.isView(data) ? data : new Uint8Array(data);
+      let buffer = this.resources[name];
+      if (buffer.size < bytes.byteLength) {
+        buffer = this.buffers.replace(buffer, name, bytes.byteLength, BufferUsage.STORAGE | BufferUsage.COPY_DST, 'scene');
+        this.resources[name] = buffer;
+        this.resourceMap[name] = buffer;
+        rebind = true;
+      }
+      this.device.queue.writeBuffer(buffer, 0, bytes.buffer, bytes.byteOffset, bytes.byteLength);
+    };
+    write('primitives', p.primitives);
+    write('bvhNodes', p.bvhNodes);
+    write('bvhParents', p.bvhParents);
+    write('alphaPrimitives', p.alphaPrimitives);
+    write('instances', p.instances);
+    write('indices', p.indices);
+    write('vertexStreams', p.vertexStreams);
+    write('lights', next.lighting.heap);
+    if (rebind) this.encoderOfWaves = new WavefrontEncoder(createKernelBindGroups(this.device, this.kernels, this.resourceMap), this.resources.dispatchArgs, this.capacity);
+    this.device.queue.writeBuffer(this.resources.lighting, 0, next.lighting.uniforms);
+    this.sources = { ...this.sources, scene: next.scene, lightingOptions: next.lightingOptions };
+    this.scene = { instanceCount: next.scene.instances.length, sceneObjectCount: next.scene.sceneObjects.length, prepared: p };
+    this.lighting = next.lighting;
+    this.config = { ...this.config, lighting: next.lightingConfig, ...(next.camera ? { camera: next.camera } : {}) };
+    this.instanceIds = instanceIdTables(next.scene, p);
     this.writeFrameUniforms();
     this.resetAccumulation();
   }

@@ -14,13 +14,18 @@ export interface FlatNode {
   world: Mat4;
 }
 
-export function flattenNodes(roots: readonly Node[], nodeIndex: ReadonlyMap<Node, number>): FlatNode[] {
+/**
+ * `posedWorld`, when given, supplies each node's world matrix (an animation's pose, see posing.ts)
+ * in place of the product of the authored matrices.
+ */
+export function flattenNodes(roots: readonly Node[], nodeIndex: ReadonlyMap<Node, number>, posedWorld?: (index: number) => ArrayLike<number>): FlatNode[] {
   const out: FlatNode[] = [];
   const visit = (node: Node, parentWorld: readonly number[]): void => {
     const visibility = node.getExtension<Visibility>('KHR_node_visibility');
     if (visibility !== null && !visibility.getVisible()) return;
-    const world = multiply(parentWorld, node.getMatrix());
-    out.push({ node, index: nodeIndex.get(node) ?? -1, world });
+    const index = nodeIndex.get(node) ?? -1;
+    const world = posedWorld === undefined ? multiply(parentWorld, node.getMatrix()) : Array.from(posedWorld(index));
+    out.push({ node, index, world });
     for (const child of node.listChildren()) visit(child, world);
   };
   for (const root of roots) visit(root, IDENTITY);
