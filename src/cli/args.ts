@@ -4,6 +4,8 @@ import type { WavefrontAovName } from '../post/aovs.ts';
 import { imageFileFormatFromPath, type ImageFileFormat } from '../post/files/image-file.ts';
 import { parseAovList, parseDuration } from '../post/option-parsing.ts';
 import type { WavefrontToneMapping } from '../scene/types.ts';
+import { parseFrameList } from '../sequence/frame-list.ts';
+import { hasFramePlaceholder, hasVariantPlaceholder } from '../sequence/output-pattern.ts';
 
 export interface RenderCommand {
   kind: 'render';
@@ -48,6 +50,20 @@ export interface RenderCommand {
   envIntensity?: number;
   /** Rotation of the environment map about +Y in degrees (`--env-rotation`). */
   envRotationDegrees?: number;
+  /** glTF: the animation to pose, by name, else by index (`--animation`). */
+  animation?: string;
+  /** glTF: seconds into the animation for a still or a turntable (`--at`). */
+  at?: number;
+  /** Sequence: frame numbers, each posed at frame / fps (`--frames`). */
+  frames?: number[];
+  /** Frames per second of `frames` (`--fps`). */
+  fps: number;
+  /** Sequence: frames per orbit of the framed model (`--turntable`). */
+  turntable?: number;
+  /** Sequence: KHR_materials_variants to render, one image each (`--variants all|a,b`). */
+  variants?: 'all' | string[];
+  /** Sequence: render frames whose file exists too (`--overwrite`); default they are skipped. */
+  overwrite: boolean;
 }
 
 export interface HelpCommand {
@@ -72,6 +88,8 @@ export const renderDefaults = {
   denoise: false,
   half: false,
   energyCompensation: true,
+  fps: 24,
+  overwrite: false,
 } as const satisfies Omit<RenderCommand, 'kind' | 'scenePath' | 'aovs'>;
 
 export const usage = `Usage: gpu-renderer render [scene.json | model.glb | model.gltf] [options]
@@ -111,6 +129,18 @@ Options:
   --camera <name>          glTF: render from the camera (node or camera) of that name
                            (default the scene's first camera, else one framing the scene)
   --variant <name>         glTF: KHR_materials_variants variant to render
+  --animation <name|i>     glTF: the animation to pose, by name or index (default the first)
+  --at <seconds>           glTF: pose the animation at this time (default 0)
+
+Sequences (glTF; --out holds #### for the frame number, {variant} for the variant name):
+  --frames <list>          frames to render, e.g. 0-23, 0-239:10, 1,5,9; frame f poses the
+                           animation at f / fps
+  --fps <n>                frames per second of --frames (default ${renderDefaults.fps})
+  --turntable <n>          orbit the framed model in n frames (with --frames: frame f looks from
+                           360 f / n degrees)
+  --variants <all|a,b>     one image per KHR_materials_variants variant
+  --overwrite              render frames whose file exists (default: skip them, so an
+                           interrupted sequence resumes)
   -h, --help               show this help
 `;
 
@@ -137,6 +167,11 @@ function positiveNumber(flag: string, text: string): number {
   return n;
 }
 
+/** A command that renders a sequence of images (frames, a turntable or variants) rather than one still. */
+export function isSequence(command: Pick<RenderCommand, 'frames' | 'turntable' | 'variants'>): boolean {
+  return command.frames !== undefined || command.turntable !== undefined || command.variants !== undefined;
+}
+
 /** True for paths the CLI loads as glTF 2.0 (.glb, .gltf; case-insensitive). */
 export function isGltfPath(path: string): boolean {
   return /\.(glb|gltf)$/i.test(path);
@@ -146,6 +181,7 @@ export function isGltfPath(path: string): boolean {
 export function parseRenderArgs(argv: readonly string[]): RenderCommand | HelpCommand {
   const command: RenderCommand = { kind: 'render', scenePath: undefined, ...renderDefaults, aovs: [] };
   let sppPerFrameGiven = false;
+  let fpsGiven = false;
   for (let i = 0; i < argv.length; i++) {
     const arg = argv[i];
     if (arg === '-h' || arg === '--help') return { kind: 'help', text: usage };
@@ -256,6 +292,40 @@ export function parseRenderArgs(argv: readonly string[]): RenderCommand | HelpCo
       case '--env-rotation':
         command.envRotationDegrees = finiteNumber(flag, take());
         break;
+      case '--animation': {
+        const name = take();
+        if (name === '') invalid(flag, 'expects an animation name or index');
+        command.animation = name;
+        break;
+      }
+      case '--at':
+        command.at = finiteNumber(flag, take(), 0);
+        break;
+      case '--frames':
+        command.frames = parseFrameList(take(), flag);
+        break;
+      case '--fps':
+        command.fps = positiveNumber(flag, take());
+        fpsGiven = true;
+        break;
+      case '--turntable':
+        command.turntable = integer(flag, take(), 1, 100000);
+        break;
+      case '--variants': {
+        const list = take();
+        if (list === 'all') {
+          command.variants = 'all';
+        } else {
+          const names = list.split(',').map((n) => n.trim());
+          if (names.some((n) => n === '')) invalid(flag, `expected all or comma-separated variant names, got ${JSON.stringify(list)}`);
+          command.variants = names;
+        }
+        break;
+      }
+      case '--overwrite':
+        if (value !== undefined) invalid(flag, 'takes no value');
+        command.overwrite = true;
+        break;
       default:
         invalid(flag, `unknown option (see --help)`);
     }
@@ -270,8 +340,19 @@ export function parseRenderArgs(argv: readonly string[]): RenderCommand | HelpCo
   if (command.half && command.format !== 'exr') invalid('--half', 'applies to .exr output only');
   if (command.minSpp !== undefined && command.noiseThreshold === undefined) invalid('--min-spp', 'applies with --noise');
   if (command.minSpp !== undefined && command.minSpp > command.spp) invalid('--min-spp', `must be <= --spp (${command.spp})`);
-  for (const [flag, value] of [['--camera', command.camera], ['--variant', command.variant]] as const) {
+  const gltfOnly = [['--camera', command.camera], ['--variant', command.variant], ['--animation', command.animation], ['--at', command.at], ['--frames', command.frames], ['--turntable', command.turntable], ['--variants', command.variants]] as const;
+  for (const [flag, value] of gltfOnly) {
     if (value !== undefined && (command.scenePath === undefined || !isGltfPath(command.scenePath))) invalid(flag, 'applies to glTF scenes (.glb or .gltf) only');
+  }
+  if (command.at !== undefined && command.frames !== undefined) invalid('--at', '--frames pose frame f at f / fps; give one of --at and --frames');
+  if (fpsGiven && command.frames === undefined) invalid('--fps', 'applies with --frames');
+  if (command.variant !== undefined && command.variants !== undefined) invalid('--variants', 'give one of --variant and --variants');
+  if (command.overwrite && !isSequence(command)) invalid('--overwrite', 'applies to sequences (--frames, --turntable, --variants)');
+  if (isSequence(command)) {
+    const frameCount = command.frames?.length ?? command.turntable ?? 1;
+    if (frameCount > 1 && !hasFramePlaceholder(command.out)) invalid('--out', `${frameCount} frames need a frame number in the file name: put #### where it goes (e.g. shot-####.png)`);
+    const variantCount = command.variants === 'all' ? Infinity : (command.variants?.length ?? 1);
+    if (variantCount > 1 && !hasVariantPlaceholder(command.out)) invalid('--out', 'several variants need {variant} in the file name (e.g. shoe-{variant}.png)');
   }
   return command;
 }

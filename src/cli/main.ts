@@ -3,7 +3,7 @@
 import { realpathSync } from 'node:fs';
 import { pathToFileURL } from 'node:url';
 import { isGpuRendererError } from '../errors/gpu-renderer-error.ts';
-import { parseCliArgs } from './args.ts';
+import { isSequence, parseCliArgs } from './args.ts';
 import { formatSummary } from './render-format.ts';
 
 /** Runs the CLI with `argv` (the arguments after the executable); resolves to the exit code. */
@@ -15,6 +15,11 @@ export async function main(argv: readonly string[]): Promise<number> {
       return 0;
     }
     // Loaded only for rendering, so --help and argument errors never touch WebGPU.
+    if (isSequence(command)) {
+      const { runSequenceCommand, formatSequenceSummary } = await import('./sequence-command.ts');
+      process.stderr.write(`${formatSequenceSummary(await runSequenceCommand(command, { stderr: process.stderr }))}\n`);
+      return 0;
+    }
     const { runRenderCommand } = await import('./render-command.ts');
     const summary = await runRenderCommand(command, { stderr: process.stderr });
     process.stderr.write(`${formatSummary(summary)}\n`);

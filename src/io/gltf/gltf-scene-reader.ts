@@ -345,7 +345,7 @@ async function poseAsset(asset: LoadedAsset, options: GltfLoadOptions): Promise<
   const scene = { meshes, instances, materials, textures: asset.table.textures, images: asset.table.images, camera, lights };
   const poseAgain = (next: GltfPoseAgainOptions = {}): Promise<GltfScene> => {
     const merged: GltfLoadOptions = { ...options };
-    for (const [key, value] of Object.entries(next)) if (value !== undefined || key === 'animation') (merged as Record<string, unknown>)[key] = value;
+    for (const [key, value] of Object.entries(next)) if (value !== undefined) (merged as Record<string, unknown>)[key] = value;
     return poseAsset(asset, merged);
   };
   const metadata = {
