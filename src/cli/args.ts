@@ -5,7 +5,8 @@ import { imageFileFormatFromPath, type ImageFileFormat } from '../post/files/ima
 import { parseAovList, parseDuration } from '../post/option-parsing.ts';
 import type { WavefrontToneMapping } from '../scene/types.ts';
 import { parseFrameList } from '../sequence/frame-list.ts';
-import { hasFramePlaceholder, hasVariantPlaceholder } from '../sequence/output-pattern.ts';
+import { parseFarmArgs, type FarmCommand } from './farm-args.ts';
+import { hasCameraPlaceholder, hasFramePlaceholder, hasVariantPlaceholder } from '../sequence/output-pattern.ts';
 
 export interface RenderCommand {
   kind: 'render';
@@ -56,14 +57,16 @@ export interface RenderCommand {
   at?: number;
   /** Sequence: frame numbers, each posed at frame / fps (`--frames`). */
   frames?: number[];
-  /** Frames per second of `frames` (`--fps`). */
-  fps: number;
+  /** Frames per second of `frames` (`--fps`); default 24. */
+  fps?: number;
   /** Sequence: frames per orbit of the framed model (`--turntable`). */
   turntable?: number;
   /** Sequence: KHR_materials_variants to render, one image each (`--variants all|a,b`). */
   variants?: 'all' | string[];
+  /** Sequence: glTF cameras to render from, one pass each (`--cameras all|a,b`). */
+  cameras?: 'all' | string[];
   /** Sequence: render frames whose file exists too (`--overwrite`); default they are skipped. */
-  overwrite: boolean;
+  overwrite?: boolean;
 }
 
 export interface HelpCommand {
@@ -71,7 +74,7 @@ export interface HelpCommand {
   text: string;
 }
 
-export type CliCommand = RenderCommand | HelpCommand;
+export type CliCommand = RenderCommand | HelpCommand | FarmCommand;
 
 export const renderDefaults = {
   width: 512,
@@ -88,11 +91,10 @@ export const renderDefaults = {
   denoise: false,
   half: false,
   energyCompensation: true,
-  fps: 24,
-  overwrite: false,
 } as const satisfies Omit<RenderCommand, 'kind' | 'scenePath' | 'aovs'>;
 
 export const usage = `Usage: gpu-renderer render [scene.json | model.glb | model.gltf] [options]
+       gpu-renderer farm <submit | worker | status> [options]   (see gpu-renderer farm --help)
 
 Renders a scene with the WebGPU wavefront path tracer and writes a PNG, OpenEXR or Radiance HDR
 image (by the extension of --out). The scene is a scene JSON file or a glTF 2.0 asset (.glb or
@@ -132,13 +134,14 @@ Options:
   --animation <name|i>     glTF: the animation to pose, by name or index (default the first)
   --at <seconds>           glTF: pose the animation at this time (default 0)
 
-Sequences (glTF; --out holds #### for the frame number, {variant} for the variant name):
+Sequences (glTF; --out holds #### for the frame number, {variant} and {camera} for names):
   --frames <list>          frames to render, e.g. 0-23, 0-239:10, 1,5,9; frame f poses the
                            animation at f / fps
-  --fps <n>                frames per second of --frames (default ${renderDefaults.fps})
+  --fps <n>                frames per second of --frames (default 24)
   --turntable <n>          orbit the framed model in n frames (with --frames: frame f looks from
                            360 f / n degrees)
   --variants <all|a,b>     one image per KHR_materials_variants variant
+  --cameras <all|a,b>      one image per glTF camera (by name; {camera} in --out)
   --overwrite              render frames whose file exists (default: skip them, so an
                            interrupted sequence resumes)
   -h, --help               show this help
@@ -168,8 +171,8 @@ function positiveNumber(flag: string, text: string): number {
 }
 
 /** A command that renders a sequence of images (frames, a turntable or variants) rather than one still. */
-export function isSequence(command: Pick<RenderCommand, 'frames' | 'turntable' | 'variants'>): boolean {
-  return command.frames !== undefined || command.turntable !== undefined || command.variants !== undefined;
+export function isSequence(command: Pick<RenderCommand, 'frames' | 'turntable' | 'variants' | 'cameras'>): boolean {
+  return command.frames !== undefined || command.turntable !== undefined || command.variants !== undefined || command.cameras !== undefined;
 }
 
 /** True for paths the CLI loads as glTF 2.0 (.glb, .gltf; case-insensitive). */
@@ -181,7 +184,6 @@ export function isGltfPath(path: string): boolean {
 export function parseRenderArgs(argv: readonly string[]): RenderCommand | HelpCommand {
   const command: RenderCommand = { kind: 'render', scenePath: undefined, ...renderDefaults, aovs: [] };
   let sppPerFrameGiven = false;
-  let fpsGiven = false;
   for (let i = 0; i < argv.length; i++) {
     const arg = argv[i];
     if (arg === '-h' || arg === '--help') return { kind: 'help', text: usage };
@@ -306,20 +308,19 @@ export function parseRenderArgs(argv: readonly string[]): RenderCommand | HelpCo
         break;
       case '--fps':
         command.fps = positiveNumber(flag, take());
-        fpsGiven = true;
         break;
       case '--turntable':
         command.turntable = integer(flag, take(), 1, 100000);
         break;
-      case '--variants': {
+      case '--variants':
+      case '--cameras': {
         const list = take();
-        if (list === 'all') {
-          command.variants = 'all';
-        } else {
-          const names = list.split(',').map((n) => n.trim());
-          if (names.some((n) => n === '')) invalid(flag, `expected all or comma-separated variant names, got ${JSON.stringify(list)}`);
-          command.variants = names;
+        let names: 'all' | string[] = 'all';
+        if (list !== 'all') {
+          names = list.split(',').map((n) => n.trim());
+          if (names.some((n) => n === '')) invalid(flag, `expected all or comma-separated names, got ${JSON.stringify(list)}`);
         }
+        command[flag === '--variants' ? 'variants' : 'cameras'] = names;
         break;
       }
       case '--overwrite':
@@ -340,19 +341,23 @@ export function parseRenderArgs(argv: readonly string[]): RenderCommand | HelpCo
   if (command.half && command.format !== 'exr') invalid('--half', 'applies to .exr output only');
   if (command.minSpp !== undefined && command.noiseThreshold === undefined) invalid('--min-spp', 'applies with --noise');
   if (command.minSpp !== undefined && command.minSpp > command.spp) invalid('--min-spp', `must be <= --spp (${command.spp})`);
-  const gltfOnly = [['--camera', command.camera], ['--variant', command.variant], ['--animation', command.animation], ['--at', command.at], ['--frames', command.frames], ['--turntable', command.turntable], ['--variants', command.variants]] as const;
+  const gltfOnly = [['--camera', command.camera], ['--variant', command.variant], ['--animation', command.animation], ['--at', command.at], ['--frames', command.frames], ['--turntable', command.turntable], ['--variants', command.variants], ['--cameras', command.cameras]] as const;
   for (const [flag, value] of gltfOnly) {
     if (value !== undefined && (command.scenePath === undefined || !isGltfPath(command.scenePath))) invalid(flag, 'applies to glTF scenes (.glb or .gltf) only');
   }
   if (command.at !== undefined && command.frames !== undefined) invalid('--at', '--frames pose frame f at f / fps; give one of --at and --frames');
-  if (fpsGiven && command.frames === undefined) invalid('--fps', 'applies with --frames');
+  if (command.fps !== undefined && command.frames === undefined) invalid('--fps', 'applies with --frames');
   if (command.variant !== undefined && command.variants !== undefined) invalid('--variants', 'give one of --variant and --variants');
-  if (command.overwrite && !isSequence(command)) invalid('--overwrite', 'applies to sequences (--frames, --turntable, --variants)');
+  if (command.camera !== undefined && command.cameras !== undefined) invalid('--cameras', 'give one of --camera and --cameras');
+  if (command.turntable !== undefined && command.cameras !== undefined) invalid('--cameras', 'a turntable brings its own camera; give one of --turntable and --cameras');
+  if (command.overwrite === true && !isSequence(command)) invalid('--overwrite', 'applies to sequences (--frames, --turntable, --variants, --cameras)');
   if (isSequence(command)) {
     const frameCount = command.frames?.length ?? command.turntable ?? 1;
     if (frameCount > 1 && !hasFramePlaceholder(command.out)) invalid('--out', `${frameCount} frames need a frame number in the file name: put #### where it goes (e.g. shot-####.png)`);
     const variantCount = command.variants === 'all' ? Infinity : (command.variants?.length ?? 1);
     if (variantCount > 1 && !hasVariantPlaceholder(command.out)) invalid('--out', 'several variants need {variant} in the file name (e.g. shoe-{variant}.png)');
+    const cameraCount = command.cameras === 'all' ? Infinity : (command.cameras?.length ?? 1);
+    if (cameraCount > 1 && !hasCameraPlaceholder(command.out)) invalid('--out', 'several cameras need {camera} in the file name (e.g. room-{camera}.png)');
   }
   return command;
 }
@@ -361,6 +366,7 @@ export function parseRenderArgs(argv: readonly string[]): RenderCommand | HelpCo
 export function parseCliArgs(argv: readonly string[]): CliCommand {
   const [sub, ...rest] = argv;
   if (sub === undefined || sub === '-h' || sub === '--help' || sub === 'help') return { kind: 'help', text: usage };
-  if (sub !== 'render') invalid('command', `unknown command ${JSON.stringify(sub)} (expected "render")`);
+  if (sub === 'farm') return parseFarmArgs(rest);
+  if (sub !== 'render') invalid('command', `unknown command ${JSON.stringify(sub)} (expected "render" or "farm")`);
   return parseRenderArgs(rest);
 }

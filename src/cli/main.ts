@@ -15,6 +15,10 @@ export async function main(argv: readonly string[]): Promise<number> {
       return 0;
     }
     // Loaded only for rendering, so --help and argument errors never touch WebGPU.
+    if (command.kind === 'farm') {
+      const { runFarmCommand } = await import('./farm-command.ts');
+      return await runFarmCommand(command, { stdout: process.stdout, stderr: process.stderr });
+    }
     if (isSequence(command)) {
       const { runSequenceCommand, formatSequenceSummary } = await import('./sequence-command.ts');
       process.stderr.write(`${formatSequenceSummary(await runSequenceCommand(command, { stderr: process.stderr }))}\n`);

@@ -31,6 +31,7 @@ const cliFlags: Readonly<Record<string, string>> = {
   camera: '--camera',
   variant: '--variant',
   variants: '--variants',
+  cameras: '--cameras',
   frames: '--frames',
   fps: '--fps',
   turntable: '--turntable',

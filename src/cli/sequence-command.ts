@@ -1,11 +1,11 @@
 /**
- * `render` with --frames, --turntable or --variants: plans the sequence, skips frames whose file
+ * `render` with --frames, --turntable, --variants or --cameras: plans the sequence, skips frames whose file
  * exists (unless --overwrite), poses each remaining frame from the asset loaded once, renders it
  * with one path tracer updated in place, and writes it atomically. One progress bar covers the
  * whole sequence, with the current frame's and the sequence's time left.
  */
 import type { GltfScene } from '../io/gltf/gltf-scene-reader.ts';
-import { planGltfSequence, poseGltfSequenceItem, type GltfSequenceItem } from '../sequence/gltf-sequence.ts';
+import { planGltfSequence, poseGltfSequenceItem, sequencePatternValues, type GltfSequenceItem } from '../sequence/gltf-sequence.ts';
 import { frameFileExists, writeFrameFile } from '../sequence/frame-files.ts';
 import { outputPaths } from '../sequence/output-pattern.ts';
 import { createSequenceRenderer } from '../sequence/sequence-renderer.ts';
@@ -41,13 +41,14 @@ export interface SequenceSummary {
 export function planCommandSequence(gltf: GltfScene, command: RenderCommand): { items: GltfSequenceItem[]; paths: string[] } {
   try {
     const items = planGltfSequence(gltf, {
-      ...(command.frames !== undefined ? { frames: command.frames, fps: command.fps } : {}),
+      ...(command.frames !== undefined ? { frames: command.frames, fps: command.fps ?? 24 } : {}),
       ...(command.at !== undefined ? { time: command.at } : {}),
       ...(command.turntable !== undefined ? { turntable: command.turntable } : {}),
       ...(command.variants !== undefined ? { variants: command.variants } : {}),
+      ...(command.cameras !== undefined ? { cameras: command.cameras } : {}),
       aspect: command.width / command.height,
     });
-    return { items, paths: outputPaths(command.out, items, '--out') };
+    return { items, paths: outputPaths(command.out, sequencePatternValues(items), '--out') };
   } catch (error) {
     throw withCliFlag(error);
   }
@@ -76,7 +77,7 @@ export async function runSequenceCommand(command: RenderCommand, io: { stderr: P
       const renderer = await sequence.show(frame.options);
       adapter ||= renderer.getSnapshot().adapter;
       const started = performance.now();
-      const label = `frame ${item.frame}${item.variant === undefined ? '' : ` ${item.variant}`} (${k + 1}/${todo.length})`;
+      const label = `frame ${[item.frame, item.variant, item.cameraName].filter((v) => v !== undefined).join(' ')} (${k + 1}/${todo.length})`;
       const stats = await accumulateImage(renderer, command, (done, total, estimate) => {
         // Frames still to come take the mean time of the frames so far (this one's estimate for the first).
         const frameSeconds = (performance.now() - started) / 1000;
