@@ -54,7 +54,8 @@ export function planCommandSequence(gltf: GltfScene, command: RenderCommand): { 
   }
 }
 
-export async function runSequenceCommand(command: RenderCommand, io: { stderr: ProgressStream } = { stderr: process.stderr }): Promise<SequenceSummary> {
+/** Runs a sequence command; `io.device` renders on that device (default: one acquired for the run). */
+export async function runSequenceCommand(command: RenderCommand, io: { stderr: ProgressStream; device?: GPUDevice } = { stderr: process.stderr }): Promise<SequenceSummary> {
   const t0 = performance.now();
   const gltf = await loadGltfForCommand(command.scenePath as string, { camera: command.camera, variant: command.variant, animation: command.animation, at: command.at, stderr: io.stderr });
   const { items, paths } = planCommandSequence(gltf, command);
@@ -63,7 +64,7 @@ export async function runSequenceCommand(command: RenderCommand, io: { stderr: P
   let skipped = items.length - todo.length;
   if (skipped > 0) io.stderr.write(`sequence: ${skipped} of ${items.length} frames already on disk, skipped (--overwrite renders them again)\n`);
   const lighting = await applyEnvironmentFlags({}, command);
-  const sequence = createSequenceRenderer({ ...rendererSettings(command), ...lighting });
+  const sequence = createSequenceRenderer({ ...rendererSettings(command), ...lighting, ...(io.device ? { device: io.device } : {}) });
   const progress = createProgressBar(io.stderr, 'sequence');
   const files: string[] = [];
   let renderMs = 0;
