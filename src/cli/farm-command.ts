@@ -1,11 +1,11 @@
 /** Runs `gpu-renderer farm ...` (parsed by farm-args.ts); returns the exit code. */
 import { readFile } from 'node:fs/promises';
 import { dirname, resolve } from 'node:path';
-import { parseJobFile } from '../farm/farm-job.ts';
+import { jobKeyOf, parseJobFile } from '../farm/farm-job.ts';
 import { formatFarmStatus, readFarmStatus, type FarmStatus } from '../farm/status.ts';
 import { submitFarmJob } from '../farm/submit.ts';
 import { runFarmWorker } from '../farm/worker.ts';
-import { GpuRendererError } from '../errors/gpu-renderer-error.ts';
+import { GpuRendererError, isGpuRendererError } from '../errors/gpu-renderer-error.ts';
 import type { FarmCommand } from './farm-args.ts';
 import type { ProgressStream } from './progress.ts';
 
@@ -23,7 +23,14 @@ export async function runFarmCommand(command: FarmCommand, io: { stdout: Progres
       }
       render = parseJobFile(text, path, dirname(path));
     }
-    const submission = await submitFarmJob(render!, { ...connection, stderr: io.stderr, ...(command.name !== undefined ? { name: command.name } : {}), ...(command.attempts !== undefined ? { attempts: command.attempts } : {}), ...(command.backoffMs !== undefined ? { backoffMs: command.backoffMs } : {}) });
+    const options = { ...connection, stderr: io.stderr, ...(command.name !== undefined ? { name: command.name } : {}), ...(command.attempts !== undefined ? { attempts: command.attempts } : {}), ...(command.backoffMs !== undefined ? { backoffMs: command.backoffMs } : {}) };
+    const submission = await submitFarmJob(render!, options).catch((error: unknown) => {
+      // A job file's errors name its keys: the asset is "scene", a flag's option its camelCase name.
+      if (command.jobFile === undefined || !isGpuRendererError(error) || error.field === undefined) throw error;
+      if (error.field !== 'scene' && !error.field.startsWith('--')) throw error;
+      const key = error.field === 'scene' ? 'scene' : jobKeyOf(error.field);
+      throw new GpuRendererError(error.code, error.message.slice(error.field.length + 2), { field: `/${key}`, cause: error });
+    });
     io.stdout.write(`submitted ${submission.name}: ${submission.frames} frames, ${submission.queued} queued on ${submission.queue}${submission.existing > 0 ? `, ${submission.existing} already on disk` : ''}\n`);
     return 0;
   }

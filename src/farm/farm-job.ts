@@ -39,7 +39,8 @@ function flagOf(key: string): string {
   return `--${key.replace(/[A-Z]/g, (c) => `-${c.toLowerCase()}`)}`;
 }
 
-function keyOf(flag: string): string {
+/** `--env-intensity` -> `envIntensity`: a job file's key for a command-line flag. */
+export function jobKeyOf(flag: string): string {
   return flag.replace(/^--/, '').replace(/-([a-z])/g, (_, c: string) => c.toUpperCase());
 }
 
@@ -88,7 +89,7 @@ export function parseJobFile(text: string, file: string, baseDir: string): Rende
     return command;
   } catch (error) {
     if (!isGpuRendererError(error) || error.field === undefined || !error.field.startsWith('--')) throw error;
-    const pointer = error.field === '--out' || error.field === '--scene' ? `/${error.field.slice(2)}` : `/${keyOf(error.field)}`;
+    const pointer = error.field === '--out' || error.field === '--scene' ? `/${error.field.slice(2)}` : `/${jobKeyOf(error.field)}`;
     throw new GpuRendererError(error.code, `${file}: ${error.message.slice(error.field.length + 2)}`, { field: pointer, cause: error });
   }
 }
