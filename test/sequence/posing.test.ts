@@ -132,3 +132,20 @@ test('bad animation options and data are typed errors naming the option or the J
   primitive.setAttribute('JOINTS_0', null).setAttribute('WEIGHTS_0', null);
   await rejectsWith(loadGltfScene(noJoints), 'INVALID_GLTF', '/meshes/0/primitives/0/attributes/JOINTS_0', /needs JOINTS_0/);
 });
+
+test('scene JSON: a glTF reference poses its asset with "animation" and "time"', async (t) => {
+  const { mkdtemp, rm, writeFile } = await import('node:fs/promises');
+  const { tmpdir } = await import('node:os');
+  const { join } = await import('node:path');
+  const { NodeIO } = await import('@gltf-transform/core');
+  const { loadSceneFile } = await import('../../src/io/scene-file-loader.ts');
+  const { parseGltfReferences } = await import('../../src/io/gltf/scene-file-references.ts');
+  const dir = await mkdtemp(join(tmpdir(), 'gpu-renderer-pose-'));
+  t.after(() => rm(dir, { recursive: true, force: true }));
+  await writeFile(join(dir, 'tube.glb'), await new NodeIO().writeBinary(createBendingTube().document));
+  await writeFile(join(dir, 'scene.json'), JSON.stringify({ gltf: [{ src: 'tube.glb', animation: 'Bend', time: 0.5 }] }));
+  const { scene } = await loadSceneFile(join(dir, 'scene.json'));
+  assertClose(scene.meshes![0]!.positions, expectedTube(45).positions, 1e-5, 'referenced asset posed');
+  assert.throws(() => parseGltfReferences([{ src: 'a.glb', time: -2 }]), (e: unknown) => e instanceof GpuRendererError && e.code === 'INVALID_SCENE_FILE' && e.field === 'gltf[0].time');
+  assert.throws(() => parseGltfReferences([{ src: 'a.glb', animation: 1.5 }]), (e: unknown) => e instanceof GpuRendererError && e.field === 'gltf[0].animation');
+});
