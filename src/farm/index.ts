@@ -5,3 +5,5 @@ export { parseJobFile, type FarmFrameData } from './farm-job.ts';
 export { submitFarmJob, type FarmSubmitOptions, type FarmSubmission } from './submit.ts';
 export { runFarmWorker, type FarmWorkerOptions, type FarmWorkerSummary } from './worker.ts';
 export { readFarmStatus, formatFarmStatus, type FarmStatus, type FarmJobStatus } from './status.ts';
+// A farm job is a render command: build one from `render` arguments.
+export { parseRenderArgs, type RenderCommand } from '../cli/args.ts';

@@ -2,8 +2,9 @@
  * `farm submit`: plans the job's sequence on this machine (loading the asset once validates it and
  * fixes the turntable framing, the variant and camera lists), records the job in Redis and enqueues
  * one BullMQ job per frame with a deterministic id (`<job>.<index>`), so submitting the same job
- * again adds nothing twice. Frames whose file exists are recorded as done, not enqueued (unless
- * --overwrite, which also clears the job's old completion records).
+ * again adds nothing twice and retries the frames that had failed every try. Frames whose file
+ * exists are recorded as done, not enqueued (unless --overwrite, which also clears the job's old
+ * completion records).
  */
 import { createHash } from 'node:crypto';
 import { basename } from 'node:path';
@@ -83,6 +84,13 @@ export async function submitFarmJob(input: RenderCommand, options: FarmSubmitOpt
       });
     }
     for (let i = 0; i < queued.length; i += BULK) await queue.addBulk(queued.slice(i, i + BULK));
+    // Frames that failed every try in an earlier submission: their queue jobs still exist (so the
+    // adds above were ignored); retry them.
+    for (const index of Object.keys(await redis.hgetall(keys.failed))) {
+      const job = await queue.getJob(`${name}.${index}`);
+      if (job !== undefined && (await job.isFailed())) await job.retry();
+      await redis.hdel(keys.failed, index);
+    }
     return { name, queue: connection.queue, frames: items.length, queued: queued.length, existing };
   } finally {
     await queue.close();

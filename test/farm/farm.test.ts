@@ -1,7 +1,8 @@
 // The render farm on a real Redis (a local redis-server on a free port) and real BullMQ: two worker
 // processes and an 8-frame job; one worker is killed mid-frame; every frame arrives exactly once
 // (its stalled frame taken over by the other worker) and `farm status` reports completion. Bad
-// jobs (unknown asset, bad frame range, unreachable Redis) are typed errors naming the field.
+// jobs (unknown asset, bad frame range, unreachable Redis) are typed errors naming the field; a
+// frame that keeps failing is retried with backoff, listed as failed, and retried on resubmission.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { spawn, type ChildProcess } from 'node:child_process';
@@ -75,14 +76,19 @@ test('two workers render an 8-frame job; one killed mid-frame, every frame arriv
 
   const a = startWorker(redis.url);
   const b = startWorker(redis.url);
+  const workers = [a, b];
   t.after(() => {
-    for (const w of [a, b]) if (w.child.exitCode === null) w.child.kill('SIGKILL');
+    for (const w of workers) if (w.child.exitCode === null) w.child.kill('SIGKILL');
   });
   // Kill worker A as soon as it has a frame in hand (before it can write it).
   await until(() => / started/.test(a.log), 'worker A to start a frame');
   a.child.kill('SIGKILL');
   await a.exited;
   const killedFrame = Number(/frame (\d+) \(tube8 #\d+\) started/.exec(a.log)![1]);
+  // A frame that cannot be written (its directory is a file): retried with backoff, then failed.
+  await writeFile(join(dir, 'blocker'), 'not a directory');
+  const blocked = [asset, '--frames', '3', '--camera', 'Front', '--out', join(dir, 'blocker', 'b-#.png'), '--width', '16', '--height', '16', '--spp', '1', '--max-depth', '1'];
+  assert.equal((await farm(['submit', ...blocked, '--redis', redis.url, '--name', 'blocked', '--attempts', '2', '--backoff-ms', '100'])).code, 0);
   assert.equal(await b.exited, 0, b.log);
 
   const files = (await readdir(join(dir, 'out'))).sort();
@@ -97,10 +103,24 @@ test('two workers render an 8-frame job; one killed mid-frame, every frame arriv
   const status = await farm(['status', 'tube8', '--json', '--redis', redis.url]);
   const parsed = JSON.parse(status.stdout) as FarmStatus;
   assert.deepEqual(parsed.jobs.map((j) => [j.name, j.frames, j.done, j.failed, j.complete]), [['tube8', 8, 8, 0, true]]);
-  assert.deepEqual([parsed.counts.waiting, parsed.counts.active, parsed.counts.completed, parsed.counts.failed], [0, 0, 8, 0]);
+  assert.deepEqual([parsed.counts.waiting, parsed.counts.active, parsed.counts.completed, parsed.counts.failed], [0, 0, 8, 1]);
   assert.match((await farm(['status', '--redis', redis.url])).stdout, /tube8: 8\/8 frames done \(100%\), complete/);
   // Submitting again finds every frame on disk and enqueues nothing.
   assert.match((await farm(['submit', ...job, '--redis', redis.url, '--name', 'tube8'])).stdout, /8 frames, 0 queued on gpu-renderer, 8 already on disk/);
+
+  assert.match(b.log, /frame 3 \(blocked #0\) failed \(try 1 of 2\)/);
+  assert.match(b.log, /frame 3 \(blocked #0\) failed \(try 2 of 2\)/);
+  const failed = JSON.parse((await farm(['status', 'blocked', '--json', '--redis', redis.url])).stdout) as FarmStatus;
+  assert.deepEqual(failed.jobs.map((j) => [j.done, j.failed, j.remaining, j.complete]), [[0, 1, 0, false]]);
+  // Once the cause is gone, submitting the job again retries the failed frame.
+  await rm(join(dir, 'blocker'));
+  assert.equal((await farm(['submit', ...blocked, '--redis', redis.url, '--name', 'blocked'])).code, 0);
+  const c = startWorker(redis.url);
+  workers.push(c);
+  assert.equal(await c.exited, 0, c.log);
+  assert.match(c.log, /frame 3 \(blocked #0\) wrote /);
+  const retried = JSON.parse((await farm(['status', 'blocked', '--json', '--redis', redis.url, '--wait', '--timeout', '10'])).stdout) as FarmStatus;
+  assert.deepEqual(retried.jobs.map((j) => [j.done, j.failed, j.complete]), [[1, 0, true]]);
 });
 
 async function rejectsWith(promise: Promise<unknown>, code: string, field: string, message?: RegExp): Promise<void> {
