@@ -24,12 +24,13 @@ import { isGltfPath, type RenderCommand } from './args.ts';
 
 export type { RenderSummary } from './render-format.ts';
 
-/** The CLI flag a loader or sequence option corresponds to, for errors. */
+/**
+ * The CLI flag a loader or sequence option corresponds to, for errors. (`camera` and `variant`
+ * keep the loader's option names, as the CLI has always reported them.)
+ */
 const cliFlags: Readonly<Record<string, string>> = {
   animation: '--animation',
   time: '--at',
-  camera: '--camera',
-  variant: '--variant',
   variants: '--variants',
   cameras: '--cameras',
   frames: '--frames',

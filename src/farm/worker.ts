@@ -99,10 +99,19 @@ export async function runFarmWorker(options: FarmWorkerOptions = {}): Promise<Fa
     log(`frame ${item.frame} (${name} #${index}) started`);
     const started = performance.now();
     const asset = await assetFor(render);
-    const frame = await poseGltfSequenceItem(asset.gltf, item);
-    const renderer = await asset.sequence.show(frame.options);
-    await accumulateImage(renderer, render, () => undefined);
-    const written = await writeFrameFile(path, await encodeOutput(renderer, render), render.overwrite ? 'replace' : 'create');
+    let bytes: Uint8Array;
+    try {
+      const frame = await poseGltfSequenceItem(asset.gltf, item);
+      const renderer = await asset.sequence.show(frame.options);
+      await accumulateImage(renderer, render, () => undefined);
+      bytes = await encodeOutput(renderer, render);
+    } catch (error) {
+      // A renderer that failed (a lost device) is not reused: the next frame starts afresh.
+      asset.sequence.destroy();
+      cached = null;
+      throw error;
+    }
+    const written = await writeFrameFile(path, bytes, render.overwrite ? 'replace' : 'create');
     const seconds = (performance.now() - started) / 1000;
     await record({ seconds, written });
     if (written) {

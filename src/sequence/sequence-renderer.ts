@@ -38,16 +38,20 @@ export function createSequenceRenderer(options: SequenceRendererOptions): Sequen
     async show(scene) {
       const sameMaterials = shown !== null && shown.materials === scene.materials && shown.textures === scene.textures && shown.images === scene.images && shown.sceneObjects === scene.sceneObjects;
       const current = renderer;
-      shown = scene;
-      if (current === null || !sameMaterials) return create(scene);
+      if (current === null || !sameMaterials) {
+        const created = await create(scene);
+        shown = scene;
+        return created;
+      }
       try {
         await current.updateScene({ meshes: scene.meshes ?? [], instances: scene.instances ?? [], lights: scene.lights ?? [], ...(scene.camera ? { camera: scene.camera } : {}) });
-        return current;
       } catch (error) {
         // Kernels specialised without a feature this frame needs: compile a renderer for it.
-        if (isGpuRendererError(error) && error.code === 'INVALID_STATE') return create(scene);
-        throw error;
+        if (!isGpuRendererError(error) || error.code !== 'INVALID_STATE') throw error;
+        await create(scene);
       }
+      shown = scene;
+      return renderer!;
     },
     get renderer() {
       return renderer;
