@@ -67,6 +67,18 @@ export interface RenderCommand {
   cameras?: 'all' | string[];
   /** Sequence: render frames whose file exists too (`--overwrite`); default they are skipped. */
   overwrite?: boolean;
+  /** Negative texels of an environment map file (lossy EXR ringing): set to 0 and reported, or refused. */
+  negativeTexels: 'zero' | 'error';
+  /** Eye position (`--camera-position x,y,z`); replaces the scene's camera. */
+  cameraPosition?: [number, number, number];
+  /** Look-at point (`--camera-target x,y,z`, with --camera-position); default the scene bounds' centre. */
+  cameraTarget?: [number, number, number];
+  /** Orbit of the scene bounds' centre (`--orbit azimuth,elevation[,distance]`, degrees); replaces the scene's camera. */
+  orbit?: { azimuthDegrees: number; elevationDegrees: number; distance?: number };
+  /** Vertical field of view in degrees (`--fov`) of the camera rendered from. */
+  fovYDegrees?: number;
+  /** Where the BVH is built (`--bvh-build`): 'cpu-upload' (the renderer's default) or 'gpu'. */
+  accelerationBuildMode?: 'cpu-upload' | 'gpu';
 }
 
 export interface HelpCommand {
@@ -91,6 +103,7 @@ export const renderDefaults = {
   denoise: false,
   half: false,
   energyCompensation: true,
+  negativeTexels: 'zero',
 } as const satisfies Omit<RenderCommand, 'kind' | 'scenePath' | 'aovs'>;
 
 export const usage = `Usage: gpu-renderer render [scene.json | model.glb | model.gltf] [options]
@@ -128,8 +141,21 @@ Options:
                            equirectangular, top row = +Y (replaces the scene's environment)
   --env-intensity <x>      multiplies the environment map's radiance (default 1)
   --env-rotation <deg>     rotates the environment map about +Y (default 0)
+  --negative-texels <m>    environment map texels below zero (the ringing of lossy EXR
+                           compression, e.g. the HDRIs of @pmndrs/assets): zero (set them to 0
+                           and report how many and how much energy that adds) | error (refuse
+                           the map) (default ${renderDefaults.negativeTexels}); --env also takes those
+                           packages' .exr.js modules (a default-exported data: URL)
   --camera <name>          glTF: render from the camera (node or camera) of that name
-                           (default the scene's first camera, else one framing the scene)
+                           (default the scene's first camera, else a raised three-quarter view
+                           framing the scene bounds: azimuth 30, elevation 25, fov 45)
+  --orbit <az,el[,dist]>   camera on an orbit of the scene bounds' centre: azimuth in degrees
+                           about +Y from +Z towards +X, elevation in degrees (-90..90) and
+                           distance (default: the nearest at which the bounds fit the image)
+  --camera-position <x,y,z> camera eye position (replaces the scene's camera)
+  --camera-target <x,y,z>  with --camera-position: the point looked at (default the centre of
+                           the scene bounds)
+  --fov <deg>              vertical field of view of the camera rendered from, in (0, 179]
   --variant <name>         glTF: KHR_materials_variants variant to render
   --animation <name|i>     glTF: the animation to pose, by name or index (default the first)
   --at <seconds>           glTF: pose the animation at this time (default 0)
@@ -144,6 +170,8 @@ Sequences (glTF; --out holds #### for the frame number, {variant} and {camera} f
   --cameras <all|a,b>      one image per glTF camera (by name; {camera} in --out)
   --overwrite              render frames whose file exists (default: skip them, so an
                            interrupted sequence resumes)
+  --bvh-build <where>      cpu-upload (binned SAH on the CPU, the default) | gpu (LBVH built on the
+                           GPU: faster to build on a real GPU, its tree ~25-30 % costlier (SAH))
   -h, --help               show this help
 `;
 
@@ -173,6 +201,26 @@ function positiveNumber(flag: string, text: string): number {
 /** A command that renders a sequence of images (frames, a turntable or variants) rather than one still. */
 export function isSequence(command: Pick<RenderCommand, 'frames' | 'turntable' | 'variants' | 'cameras'>): boolean {
   return command.frames !== undefined || command.turntable !== undefined || command.variants !== undefined || command.cameras !== undefined;
+}
+
+/** `x,y,z`: three finite numbers separated by commas. */
+function vector3(flag: string, text: string): [number, number, number] {
+  const parts = text.split(',');
+  const values = parts.map((p) => (p.trim() === '' ? Number.NaN : Number(p)));
+  if (values.length !== 3 || !values.every(Number.isFinite)) invalid(flag, `expected x,y,z (three finite numbers), got ${JSON.stringify(text)}`);
+  return values as [number, number, number];
+}
+
+/** `azimuth,elevation[,distance]` in degrees and scene units. */
+function orbit(flag: string, text: string): NonNullable<RenderCommand['orbit']> {
+  const values = text.split(',').map((p) => (p.trim() === '' ? Number.NaN : Number(p)));
+  if ((values.length !== 2 && values.length !== 3) || !values.every(Number.isFinite)) {
+    invalid(flag, `expected azimuth,elevation or azimuth,elevation,distance (finite numbers), got ${JSON.stringify(text)}`);
+  }
+  const [azimuthDegrees, elevationDegrees, distance] = values as [number, number, number | undefined];
+  if (Math.abs(elevationDegrees) > 90) invalid(flag, `elevation must be within [-90, 90] degrees, got ${elevationDegrees}`);
+  if (distance !== undefined && !(distance > 0)) invalid(flag, `distance must be > 0, got ${distance}`);
+  return { azimuthDegrees, elevationDegrees, ...(distance !== undefined ? { distance } : {}) };
 }
 
 /** True for paths the CLI loads as glTF 2.0 (.glb, .gltf; case-insensitive). */
@@ -288,6 +336,12 @@ export function parseRenderArgs(argv: readonly string[]): RenderCommand | HelpCo
         command.env = env;
         break;
       }
+      case '--bvh-build': {
+        const where = take();
+        if (where !== 'cpu-upload' && where !== 'gpu') invalid(flag, `expected cpu-upload or gpu, got ${JSON.stringify(where)}`);
+        command.accelerationBuildMode = where;
+        break;
+      }
       case '--env-intensity':
         command.envIntensity = finiteNumber(flag, take(), 0);
         break;
@@ -327,6 +381,28 @@ export function parseRenderArgs(argv: readonly string[]): RenderCommand | HelpCo
         if (value !== undefined) invalid(flag, 'takes no value');
         command.overwrite = true;
         break;
+      case '--negative-texels': {
+        const mode = take();
+        if (mode !== 'zero' && mode !== 'error') invalid(flag, `expected zero or error, got ${JSON.stringify(mode)}`);
+        command.negativeTexels = mode;
+        break;
+      }
+      case '--camera-position':
+        command.cameraPosition = vector3(flag, take());
+        break;
+      case '--camera-target':
+        command.cameraTarget = vector3(flag, take());
+        break;
+      case '--orbit':
+        command.orbit = orbit(flag, take());
+        break;
+      case '--fov': {
+        const text = take();
+        const fov = text.trim() === '' ? Number.NaN : Number(text);
+        if (!(fov > 0 && fov <= 179)) invalid(flag, `expected degrees in (0, 179], got ${JSON.stringify(text)}`);
+        command.fovYDegrees = fov;
+        break;
+      }
       default:
         invalid(flag, `unknown option (see --help)`);
     }
@@ -341,6 +417,11 @@ export function parseRenderArgs(argv: readonly string[]): RenderCommand | HelpCo
   if (command.half && command.format !== 'exr') invalid('--half', 'applies to .exr output only');
   if (command.minSpp !== undefined && command.noiseThreshold === undefined) invalid('--min-spp', 'applies with --noise');
   if (command.minSpp !== undefined && command.minSpp > command.spp) invalid('--min-spp', `must be <= --spp (${command.spp})`);
+  if (command.cameraTarget !== undefined && command.cameraPosition === undefined) invalid('--camera-target', 'needs --camera-position (or use --orbit)');
+  if (command.orbit !== undefined && command.cameraPosition !== undefined) invalid('--orbit', 'cannot be combined with --camera-position');
+  if (command.camera !== undefined && (command.orbit !== undefined || command.cameraPosition !== undefined)) {
+    invalid('--camera', `names a camera of the asset; ${command.orbit !== undefined ? '--orbit' : '--camera-position'} places one instead`);
+  }
   const gltfOnly = [['--camera', command.camera], ['--variant', command.variant], ['--animation', command.animation], ['--at', command.at], ['--frames', command.frames], ['--turntable', command.turntable], ['--variants', command.variants], ['--cameras', command.cameras]] as const;
   for (const [flag, value] of gltfOnly) {
     if (value !== undefined && (command.scenePath === undefined || !isGltfPath(command.scenePath))) invalid(flag, 'applies to glTF scenes (.glb or .gltf) only');
@@ -350,6 +431,9 @@ export function parseRenderArgs(argv: readonly string[]): RenderCommand | HelpCo
   if (command.variant !== undefined && command.variants !== undefined) invalid('--variants', 'give one of --variant and --variants');
   if (command.camera !== undefined && command.cameras !== undefined) invalid('--cameras', 'give one of --camera and --cameras');
   if (command.turntable !== undefined && command.cameras !== undefined) invalid('--cameras', 'a turntable brings its own camera; give one of --turntable and --cameras');
+  const placed = command.orbit !== undefined ? '--orbit' : command.cameraPosition !== undefined ? '--camera-position' : undefined;
+  if (placed !== undefined && command.turntable !== undefined) invalid('--turntable', `a turntable brings its own camera; give one of --turntable and ${placed}`);
+  if (placed !== undefined && command.cameras !== undefined) invalid('--cameras', `give one of --cameras and ${placed}`);
   if (command.overwrite === true && !isSequence(command)) invalid('--overwrite', 'applies to sequences (--frames, --turntable, --variants, --cameras)');
   if (isSequence(command)) {
     const frameCount = command.frames?.length ?? command.turntable ?? 1;

@@ -5,19 +5,20 @@
  */
 import { createWavefrontPathTracingComputeRenderer } from '../pathtracer/index.ts';
 import type { WavefrontPathTracingRenderer } from '../pathtracer/types.ts';
+import { GpuRendererError, isGpuRendererError } from '../errors/gpu-renderer-error.ts';
 import { createCornellBoxScene } from '../scene/cornell-box.ts';
 import type { WavefrontSceneDescription } from '../scene/types.ts';
 import type { EnvironmentMapInput } from '../lighting/environment-map.ts';
-import { applyEnvironmentFlags } from './environment-flags.ts';
-import { encodePng } from '../post/png.ts';
-import { encodeImageFile } from '../post/files/image-file.ts';
-import { GpuRendererError, isGpuRendererError } from '../errors/gpu-renderer-error.ts';
 import type { GltfScene } from '../io/gltf/gltf-scene-reader.ts';
 import type { GltfAnimationInfo } from '../io/gltf/posing.ts';
-import { writeFrameFile } from '../sequence/frame-files.ts';
-import type { SequenceRendererOptions } from '../sequence/sequence-renderer.ts';
+import { applyCameraFlags } from './camera-flags.ts';
+import { applyEnvironmentFlags, negativeTexelNote } from './environment-flags.ts';
+import { encodePng } from '../post/png.ts';
+import { encodeImageFile } from '../post/files/image-file.ts';
 import type { WavefrontAovName } from '../post/aovs.ts';
 import { defaultAdaptiveSamplingParameters } from '../post/adaptive-sampling/converged-mask.ts';
+import { writeFrameFile } from '../sequence/frame-files.ts';
+import type { SequenceRendererOptions } from '../sequence/sequence-renderer.ts';
 import { createProgressBar, type ProgressEstimate, type ProgressStream } from './progress.ts';
 import type { RenderSummary } from './render-format.ts';
 import { isGltfPath, type RenderCommand } from './args.ts';
@@ -57,12 +58,12 @@ function animationChoice(animations: readonly GltfAnimationInfo[], text: string 
 /** Loads a glTF asset posed as the command asks (`--animation`, `--at`, `--camera`, `--variant`). */
 export async function loadGltfForCommand(
   scenePath: string,
-  options: { camera?: string; variant?: string; animation?: string; at?: number; stderr?: ProgressStream },
+  options: { camera?: string; variant?: string; animation?: string; at?: number; aspectRatio?: number; stderr?: ProgressStream },
 ): Promise<GltfScene> {
   // Loaded on demand so JSON scenes never pull in the glTF reader and its decoders.
   const { loadGltfScene } = await import('../io/gltf/load-gltf-scene.ts');
   try {
-    let gltf = await loadGltfScene(scenePath, { camera: options.camera, variant: options.variant });
+    let gltf = await loadGltfScene(scenePath, { camera: options.camera, variant: options.variant, ...(options.aspectRatio !== undefined ? { aspectRatio: options.aspectRatio } : {}) });
     if (options.animation !== undefined || options.at !== undefined) {
       gltf = await gltf.pose({ ...(options.animation !== undefined ? { animation: animationChoice(gltf.animations, options.animation) } : {}), ...(options.at !== undefined ? { time: options.at } : {}) });
     }
@@ -79,7 +80,7 @@ export async function loadGltfForCommand(
  */
 export async function loadScene(
   scenePath: string | undefined,
-  options: { camera?: string; variant?: string; animation?: string; at?: number; stderr?: ProgressStream } = {},
+  options: { camera?: string; variant?: string; animation?: string; at?: number; stderr?: ProgressStream; aspectRatio?: number; negativeTexels?: 'zero' | 'error' } = {},
 ): Promise<WavefrontSceneDescription & { environmentMap?: EnvironmentMapInput }> {
   if (scenePath === undefined) return createCornellBoxScene();
   if (isGltfPath(scenePath)) {
@@ -88,7 +89,13 @@ export async function loadScene(
   }
   // Scene JSON: its `uri` images are decoded and its `gltf` references loaded and merged.
   const { loadSceneFile } = await import('../io/scene-file-loader.ts');
-  const file = await loadSceneFile(scenePath);
+  const file = await loadSceneFile(scenePath, {
+    negativeTexels: options.negativeTexels ?? 'error',
+    onNegativeTexels: (report, field) => {
+      const text = negativeTexelNote(field, report);
+      if (text !== undefined) options.stderr?.write(`note: ${text}\n`);
+    },
+  });
   for (const warning of file.warnings) options.stderr?.write(`warning: ${warning}\n`);
   return file.scene;
 }
@@ -116,40 +123,57 @@ export function rendererSettings(command: RenderCommand): SequenceRendererOption
     aovs: command.aovs.some((a) => a !== 'sampleCount'),
     denoise: command.denoise,
     energyCompensation: command.energyCompensation,
+    ...(command.accelerationBuildMode ? { accelerationBuildMode: command.accelerationBuildMode } : {}),
     ...(command.noiseThreshold !== undefined ? { adaptiveThreshold: command.noiseThreshold, minimumSamplesPerPixel } : {}),
   };
 }
 
-/** What accumulating one image took. */
+/** What accumulating one image took; the first frame is counted apart (it runs outside the clock). */
 export interface AccumulationStats {
   samplesPerPixel: number;
+  stoppedBy: NonNullable<RenderSummary['stoppedBy']>;
+  firstFrameMs: number;
+  firstSamples: number;
+  firstPixelSamples: number;
+  firstRays: number;
+  /** Pixel samples, rays and time of the frames after the first. */
   pixelSamples: number;
   rays: number;
-  invalidSamples: number;
   renderMs: number;
-  stoppedBy: NonNullable<RenderSummary['stoppedBy']>;
+  invalidSamples: number;
 }
+
+/** Progress of one image: the estimate's `remainingSeconds` is always set; `extrapolated` says it is the plain sample-rate extrapolation. */
+export type AccumulationProgress = (samples: number, total: number, estimate: ProgressEstimate & { remainingSeconds: number; extrapolated: boolean }) => void;
 
 /**
  * Accumulates the command's samples into `renderer` in increments of --spp-per-frame, until the
- * ceiling, the time limit or (adaptive sampling) convergence, reporting progress after each step.
+ * ceiling, the time limit or (adaptive sampling) convergence, reporting progress after each frame.
+ * The first frame runs outside the clock: drivers that compile pipelines on their first dispatch
+ * (llvmpipe, some mobile drivers) do so there, so --time and the sample rate measure sampling
+ * only. It is an ordinary frame (its samples count), so the cadence is unchanged.
  */
-export async function accumulateImage(
-  renderer: WavefrontPathTracingRenderer,
-  command: RenderCommand,
-  report: (samples: number, total: number, estimate: ProgressEstimate & { remainingSeconds: number }) => void,
-): Promise<AccumulationStats> {
+export async function accumulateImage(renderer: WavefrontPathTracingRenderer, command: RenderCommand, report: AccumulationProgress): Promise<AccumulationStats> {
   const pixels = command.width * command.height;
-  let accumulated = 0;
   let pixelSamples = 0;
   let rays = 0;
   let invalidSamples = 0;
   let renderMs = 0;
   let lastFrameMs: number | null = null;
   let stoppedBy: AccumulationStats['stoppedBy'] = 'spp';
+  const firstSamples = Math.min(command.sppPerFrame, command.spp);
+  const firstStart = performance.now();
+  const first = await renderer.renderFrame({ samplesPerPixel: firstSamples });
+  const firstFrameMs = performance.now() - firstStart;
+  if (first.samplesAdded <= 0 && !first.adaptive) throw new GpuRendererError('INVALID_STATE', 'renderFrame added no samples');
+  let accumulated = first.samplesAccumulated;
+  invalidSamples += first.radianceDiagnostics.invalidSamples;
   const started = performance.now();
   const deadline = command.timeLimitMs === undefined ? Infinity : started + command.timeLimitMs;
-  while (accumulated < command.spp) {
+  let converged = first.adaptive !== null && first.adaptive.activePixels === 0;
+  if (converged) stoppedBy = 'noise';
+  report(accumulated, command.spp, { fraction: converged ? 1 : accumulated / command.spp, remainingSeconds: converged ? 0 : ((command.spp - accumulated) * firstFrameMs) / Math.max(1, accumulated) / 1000, extrapolated: true });
+  while (accumulated < command.spp && !converged) {
     const left = deadline - performance.now();
     if (left <= 0) {
       stoppedBy = 'time';
@@ -168,14 +192,16 @@ export async function accumulateImage(
     rays += stats.rays.total;
     invalidSamples += stats.radianceDiagnostics.invalidSamples;
     const elapsed = performance.now() - started;
-    const estimates = [(command.spp - accumulated) * (elapsed / Math.max(1, accumulated))];
+    const sampled = pixelSamples / pixels;
+    const estimates = [(command.spp - accumulated) * (elapsed / Math.max(1e-9, sampled))];
     if (Number.isFinite(deadline)) estimates.push(Math.max(0, deadline - performance.now()));
     if (stats.adaptive) estimates.push((stats.adaptive.estimatedRemainingPixelSamples * elapsed) / Math.max(1, pixelSamples));
     const remaining = Math.min(...estimates);
-    const converged = stats.adaptive !== null && stats.adaptive.activePixels === 0;
+    converged = stats.adaptive !== null && stats.adaptive.activePixels === 0;
     report(accumulated, command.spp, {
       fraction: converged ? 1 : elapsed / (elapsed + remaining),
       remainingSeconds: converged ? 0 : remaining / 1000,
+      extrapolated: estimates.length === 1,
       ...(stats.adaptive ? { note: `${((100 * stats.adaptive.activePixels) / pixels).toFixed(0)}% px sampling` } : {}),
     });
     if (converged) {
@@ -187,38 +213,51 @@ export async function accumulateImage(
       break;
     }
   }
-  return { samplesPerPixel: accumulated, pixelSamples, rays, invalidSamples, renderMs, stoppedBy };
+  return { samplesPerPixel: accumulated, stoppedBy, firstFrameMs, firstSamples, firstPixelSamples: first.rays.camera, firstRays: first.rays.total, pixelSamples, rays, renderMs, invalidSamples };
 }
 
 export async function runRenderCommand(command: RenderCommand, io: { stderr: ProgressStream } = { stderr: process.stderr }): Promise<RenderSummary> {
   const t0 = performance.now();
-  const scene = await applyEnvironmentFlags(await loadScene(command.scenePath, { camera: command.camera, variant: command.variant, animation: command.animation, at: command.at, stderr: io.stderr }), command);
+  const loaded = await loadScene(command.scenePath, {
+    camera: command.camera,
+    variant: command.variant,
+    animation: command.animation,
+    at: command.at,
+    stderr: io.stderr,
+    aspectRatio: command.width / command.height,
+    negativeTexels: command.negativeTexels,
+  });
+  const lit = await applyEnvironmentFlags(loaded, command, (text) => io.stderr.write(`note: ${text}\n`));
+  const scene = applyCameraFlags(lit, command);
   const renderer: WavefrontPathTracingRenderer = await createWavefrontPathTracingComputeRenderer({ ...rendererSettings(command), ...scene });
   try {
     const pixels = command.width * command.height;
     const progress = createProgressBar(io.stderr);
     progress.update(0, command.spp);
-    const timed = command.timeLimitMs !== undefined || command.noiseThreshold !== undefined;
     const stats = await accumulateImage(renderer, command, (done, total, estimate) =>
       // Without a time limit or a noise target done / total is the fraction and the bar extrapolates.
-      progress.update(done, total, timed ? estimate : estimate.note === undefined ? {} : { note: estimate.note }),
+      progress.update(done, total, estimate.extrapolated ? (estimate.note === undefined ? {} : { note: estimate.note }) : estimate),
     );
     progress.finish();
     await writeFrameFile(command.out, await encodeOutput(renderer, command));
-    const renderSeconds = stats.renderMs / 1000;
+    // Rates over the frames after the first; a one-frame render has only the first to go by.
+    const steady = stats.renderMs > 0;
+    const rateSeconds = (steady ? stats.renderMs : stats.firstFrameMs) / 1000;
     return {
       width: command.width,
       height: command.height,
       samplesPerPixel: stats.samplesPerPixel,
-      meanSamplesPerPixel: stats.pixelSamples / pixels,
+      meanSamplesPerPixel: (stats.firstPixelSamples + stats.pixelSamples) / pixels,
       stoppedBy: stats.stoppedBy,
       denoised: command.denoise,
       aovs: command.aovs,
-      renderSeconds,
+      firstFrameSeconds: stats.firstFrameMs / 1000,
+      firstFrameSamplesPerPixel: stats.firstSamples,
+      renderSeconds: stats.renderMs / 1000,
       totalSeconds: (performance.now() - t0) / 1000,
-      samplesPerSecond: stats.pixelSamples / renderSeconds,
-      rays: stats.rays,
-      raysPerSecond: stats.rays / renderSeconds,
+      samplesPerSecond: (steady ? stats.pixelSamples : stats.firstPixelSamples) / rateSeconds,
+      rays: stats.firstRays + stats.rays,
+      raysPerSecond: (steady ? stats.rays : stats.firstRays) / rateSeconds,
       invalidSamples: stats.invalidSamples,
       adapter: renderer.getSnapshot().adapter,
       out: command.out,

@@ -13,11 +13,18 @@ export interface RenderSummary {
   denoised?: boolean;
   /** AOV layers written into the .exr. */
   aovs?: readonly string[];
-  /** Seconds spent in renderFrame calls (excludes setup and the PNG write). */
+  /**
+   * Seconds of the first frame, rendered before the clock starts: drivers that compile pipelines
+   * on their first dispatch compile here. Undefined: not measured apart.
+   */
+  firstFrameSeconds?: number;
+  /** Samples per pixel of the first frame. */
+  firstFrameSamplesPerPixel?: number;
+  /** Seconds spent in the renderFrame calls after the first frame (what --time limits). */
   renderSeconds: number;
   /** Seconds from start to the written PNG. */
   totalSeconds: number;
-  /** Pixel samples taken / renderSeconds. */
+  /** Pixel samples taken after the first frame / renderSeconds (the first frame's, for a one-frame render). */
   samplesPerSecond: number;
   rays: number;
   raysPerSecond: number;
@@ -50,6 +57,9 @@ export function formatSummary(s: RenderSummary): string {
     `wrote ${s.out} (${s.width}x${s.height}, ${s.samplesPerPixel} spp${adaptive})${extras.length > 0 ? `; ${extras.join('; ')}` : ''}`,
     `  ${formatRate(s.samplesPerSecond)}samples/s, ${formatRate(s.raysPerSecond)}rays/s (${formatRate(s.rays)}rays), ` +
       `${formatDuration(s.renderSeconds)} rendering, ${formatDuration(s.totalSeconds)} total`,
+    ...(s.firstFrameSeconds !== undefined
+      ? [`  first frame (${s.firstFrameSamplesPerPixel ?? '?'} spp, with shader compilation) ${formatDuration(s.firstFrameSeconds)}, before the clock: not in the rendering time, rates or --time`]
+      : []),
     `  adapter: ${s.adapter}${s.invalidSamples > 0 ? `; ${s.invalidSamples} invalid samples dropped` : ''}`,
   ].join('\n');
 }

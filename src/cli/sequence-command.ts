@@ -10,6 +10,7 @@ import { frameFileExists, writeFrameFile } from '../sequence/frame-files.ts';
 import { outputPaths } from '../sequence/output-pattern.ts';
 import { createSequenceRenderer } from '../sequence/sequence-renderer.ts';
 import type { RenderCommand } from './args.ts';
+import { applyCameraFlags } from './camera-flags.ts';
 import { applyEnvironmentFlags } from './environment-flags.ts';
 import { createProgressBar, formatDuration, type ProgressStream } from './progress.ts';
 import { accumulateImage, encodeOutput, loadGltfForCommand, rendererSettings, withCliFlag } from './render-command.ts';
@@ -57,13 +58,15 @@ export function planCommandSequence(gltf: GltfScene, command: RenderCommand): { 
 /** Runs a sequence command; `io.device` renders on that device (default: one acquired for the run). */
 export async function runSequenceCommand(command: RenderCommand, io: { stderr: ProgressStream; device?: GPUDevice } = { stderr: process.stderr }): Promise<SequenceSummary> {
   const t0 = performance.now();
-  const gltf = await loadGltfForCommand(command.scenePath as string, { camera: command.camera, variant: command.variant, animation: command.animation, at: command.at, stderr: io.stderr });
+  const gltf = await loadGltfForCommand(command.scenePath as string, { camera: command.camera, variant: command.variant, animation: command.animation, at: command.at, aspectRatio: command.width / command.height, stderr: io.stderr });
   const { items, paths } = planCommandSequence(gltf, command);
   const todo: number[] = [];
   for (let i = 0; i < items.length; i++) if (command.overwrite || !(await frameFileExists(paths[i]!))) todo.push(i);
   let skipped = items.length - todo.length;
   if (skipped > 0) io.stderr.write(`sequence: ${skipped} of ${items.length} frames already on disk, skipped (--overwrite renders them again)\n`);
-  const lighting = await applyEnvironmentFlags({}, command);
+  const lighting = await applyEnvironmentFlags({}, command, (text) => io.stderr.write(`note: ${text}\n`));
+  // --orbit / --camera-position: one camera for every frame, placed around the loaded pose's bounds.
+  const placed = command.orbit !== undefined || command.cameraPosition !== undefined ? applyCameraFlags({ ...gltf }, command).camera : undefined;
   const sequence = createSequenceRenderer({ ...rendererSettings(command), ...lighting, ...(io.device ? { device: io.device } : {}) });
   const progress = createProgressBar(io.stderr, 'sequence');
   const files: string[] = [];
@@ -75,7 +78,7 @@ export async function runSequenceCommand(command: RenderCommand, io: { stderr: P
       const item = items[todo[k]!]!;
       const path = paths[todo[k]!]!;
       const frame = await poseGltfSequenceItem(gltf, item);
-      const renderer = await sequence.show(frame.options);
+      const renderer = await sequence.show(placed !== undefined ? { ...frame.options, camera: placed } : applyCameraFlags(frame.options, { ...command, orbit: undefined, cameraPosition: undefined }));
       adapter ||= renderer.getSnapshot().adapter;
       const started = performance.now();
       const label = `frame ${[item.frame, item.variant, item.cameraName].filter((v) => v !== undefined).join(' ')} (${k + 1}/${todo.length})`;

@@ -23,6 +23,8 @@ export type GpuRendererErrorCode =
   | 'RENDERER_DESTROYED'
   | 'SHADER_COMPILATION_FAILED'
   | 'GPU_VALIDATION_FAILED'
+  /** The GPU BVH build or refit reported a failure (accelerationBuildMode 'gpu', updateGeometry). */
+  | 'ACCELERATION_BUILD_FAILED'
   | 'INVALID_CANVAS'
   | 'INVALID_STATE'
   /** An environment map, environment file, sky description or portal that cannot be used. */

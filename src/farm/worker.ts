@@ -14,7 +14,9 @@ import { hostname } from 'node:os';
 import type * as BullMQ from 'bullmq';
 import type { ProgressStream } from '../cli/progress.ts';
 import { accumulateImage, encodeOutput, loadGltfForCommand, rendererSettings } from '../cli/render-command.ts';
+import { applyCameraFlags } from '../cli/camera-flags.ts';
 import { applyEnvironmentFlags } from '../cli/environment-flags.ts';
+import type { WavefrontCameraInput } from '../scene/types.ts';
 import type { GltfScene } from '../io/gltf/gltf-scene-reader.ts';
 import { frameFileExists, writeFrameFile } from '../sequence/frame-files.ts';
 import { poseGltfSequenceItem } from '../sequence/gltf-sequence.ts';
@@ -49,6 +51,8 @@ export interface FarmWorkerSummary {
 interface CachedAsset {
   key: string;
   gltf: GltfScene;
+  /** The camera --orbit / --camera-position place, for every frame. */
+  placed: WavefrontCameraInput | undefined;
   sequence: SequenceRenderer;
 }
 
@@ -71,15 +75,16 @@ export async function runFarmWorker(options: FarmWorkerOptions = {}): Promise<Fa
 
   const assetFor = async (render: FarmFrameData['render']): Promise<CachedAsset> => {
     const settings = rendererSettings(render);
-    const key = JSON.stringify([render.scenePath, render.camera, render.variant, render.animation, render.at, render.env, render.envIntensity, render.envRotationDegrees, settings]);
+    const key = JSON.stringify([render.scenePath, render.camera, render.variant, render.animation, render.at, render.env, render.envIntensity, render.envRotationDegrees, render.negativeTexels, render.orbit, render.cameraPosition, render.cameraTarget, render.fovYDegrees, settings]);
     if (cached?.key === key) return cached;
     cached?.sequence.destroy();
     cached = null;
-    const gltf = await loadGltfForCommand(render.scenePath!, { camera: render.camera, variant: render.variant, animation: render.animation, at: render.at, ...(options.log ? { stderr: options.log } : {}) });
-    const lighting = await applyEnvironmentFlags({}, render);
+    const gltf = await loadGltfForCommand(render.scenePath!, { camera: render.camera, variant: render.variant, animation: render.animation, at: render.at, aspectRatio: render.width / render.height, ...(options.log ? { stderr: options.log } : {}) });
+    const lighting = await applyEnvironmentFlags({}, render, (text) => log(`note: ${text}`));
+    const placed = render.orbit !== undefined || render.cameraPosition !== undefined ? applyCameraFlags({ ...gltf }, render).camera : undefined;
     summary.assetsLoaded += 1;
     log(`loaded ${render.scenePath}`);
-    cached = { key, gltf, sequence: createSequenceRenderer({ ...settings, ...lighting }) };
+    cached = { key, gltf, placed, sequence: createSequenceRenderer({ ...settings, ...lighting }) };
     return cached;
   };
 
@@ -102,7 +107,7 @@ export async function runFarmWorker(options: FarmWorkerOptions = {}): Promise<Fa
     let bytes: Uint8Array;
     try {
       const frame = await poseGltfSequenceItem(asset.gltf, item);
-      const renderer = await asset.sequence.show(frame.options);
+      const renderer = await asset.sequence.show(asset.placed !== undefined ? { ...frame.options, camera: asset.placed } : applyCameraFlags(frame.options, { ...render, orbit: undefined, cameraPosition: undefined }));
       await accumulateImage(renderer, render, () => undefined);
       bytes = await encodeOutput(renderer, render);
     } catch (error) {

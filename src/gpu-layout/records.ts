@@ -32,6 +32,25 @@ export const bvhNodeLayout: StructLayout = defineStructLayout('BvhNode', 1, [
 ]);
 
 /**
+ * Constants of one dispatch of the GPU BVH builder (src/accel/gpu-build/): the same record for every
+ * pass, with the pass-specific fields (sort digit, scan level, node count) filled in per slot.
+ */
+export const bvhBuildUniformsLayout: StructLayout = defineStructLayout('BvhBuildUniforms', 1, [
+  ['primitiveCount', 'u32', 'n: leaves of the LBVH'],
+  ['internalCount', 'u32', 'n - 1: interior nodes of the LBVH'],
+  ['keyWords', 'u32', 'Morton key words per primitive: 1 (30-bit codes) or 2 (60-bit)'],
+  ['maxLeafSize', 'u32', 'subtrees of at most this many primitives may collapse into one leaf'],
+  ['traversalCost', 'f32', 'SAH C_trav of the leaf-collapse decision'],
+  ['intersectionCost', 'f32', 'SAH C_isect of the leaf-collapse decision'],
+  ['digitShift', 'u32', 'radix sort: bit offset of this pass\'s 4-bit digit in its key word'],
+  ['digitWord', 'u32', 'radix sort: key word of this pass\'s digit'],
+  ['blockCount', 'u32', 'radix sort: blocks of SORT_BLOCK keys'],
+  ['scanLength', 'u32', 'prefix scan: elements of this level'],
+  ['nodeCount', 'u32', 'refit: records of the finished tree'],
+  ['reserved0', 'u32'],
+]);
+
+/**
  * What any-hit and closest-hit traversal need to alpha test a primitive whose material is MASK or
  * BLEND: its three base-colour uvs (KHR_texture_transform already applied), vertex-colour alphas and
  * the material's alpha terms.
@@ -562,6 +581,7 @@ export const denoiseUniformsLayout: StructLayout = defineStructLayout('DenoiseUn
 export const wavefrontRecordLayouts = {
   Primitive: primitiveLayout,
   BvhNode: bvhNodeLayout,
+  BvhBuildUniforms: bvhBuildUniformsLayout,
   AlphaPrimitive: alphaPrimitiveLayout,
   Instance: instanceLayout,
   MaterialCore: materialCoreLayout,

@@ -8,7 +8,7 @@ import { GpuRendererError, isGpuRendererError } from '../errors/gpu-renderer-err
 import { parseSceneFile, type WavefrontSceneFile } from '../scene/scene-file.ts';
 import type { WavefrontImageInput, WavefrontSceneDescription } from '../scene/types.ts';
 import type { EnvironmentMapInput } from '../lighting/environment-map.ts';
-import { loadEnvironmentMap } from '../lighting/load-environment-map.ts';
+import { loadEnvironmentMap, type NegativeTexelReport } from '../lighting/load-environment-map.ts';
 import { decodeImage } from './gltf/image-decoding.ts';
 import { readResource, readUrl, sourceStringToUrl } from './gltf/resources.ts';
 import { resolveGltfReferences } from './gltf/scene-file-references.ts';
@@ -28,8 +28,21 @@ function asSceneFileError(error: unknown, field: string): GpuRendererError {
   return new GpuRendererError('INVALID_SCENE_FILE', message, { field, cause: error });
 }
 
+export interface ResolveSceneFileOptions {
+  /** Locates relative URIs (loadSceneFile: the file itself). */
+  base?: string | URL;
+  signal?: AbortSignal;
+  /**
+   * What to do with negative texels of an environment map file whose `environment` does not say
+   * (`negativeTexels` there wins): 'error' (default) or 'zero'; see loadEnvironmentMap.
+   */
+  negativeTexels?: 'error' | 'zero';
+  /** Called with what zeroing negative texels changed (also when nothing was), and the field. */
+  onNegativeTexels?: (report: NegativeTexelReport, field: string) => void;
+}
+
 /** Decodes `uri` images and loads `gltf` references of a parsed scene file; `base` locates relative URIs. */
-export async function resolveSceneFile(file: WavefrontSceneFile, options: { base?: string | URL; signal?: AbortSignal } = {}): Promise<ResolvedSceneFile> {
+export async function resolveSceneFile(file: WavefrontSceneFile, options: ResolveSceneFileOptions = {}): Promise<ResolvedSceneFile> {
   const base = options.base === undefined ? undefined : options.base instanceof URL ? options.base : await sourceStringToUrl(options.base);
   const warnings: string[] = [];
   const { gltf, images, environment, ...rest } = file;
@@ -39,8 +52,11 @@ export async function resolveSceneFile(file: WavefrontSceneFile, options: { base
     const field = 'environment.map';
     try {
       const bytes = await readResource(environment.map, base, field, options.signal);
+      const onNegativeTexels = options.onNegativeTexels;
       scene.environmentMap = await loadEnvironmentMap(bytes, {
         field,
+        negativeTexels: environment.negativeTexels ?? options.negativeTexels ?? 'error',
+        ...(onNegativeTexels ? { onNegativeTexels: (report: NegativeTexelReport) => onNegativeTexels(report, field) } : {}),
         ...(environment.intensity !== undefined ? { intensity: environment.intensity } : {}),
         ...(environment.rotationDegrees !== undefined ? { rotationRadians: (environment.rotationDegrees * Math.PI) / 180 } : {}),
       });
@@ -71,7 +87,7 @@ export async function resolveSceneFile(file: WavefrontSceneFile, options: { base
 }
 
 /** Reads, parses and resolves a scene JSON file (Node: a path; anywhere: a URL). */
-export async function loadSceneFile(source: string | URL, options: { signal?: AbortSignal } = {}): Promise<ResolvedSceneFile> {
+export async function loadSceneFile(source: string | URL, options: Omit<ResolveSceneFileOptions, 'base'> = {}): Promise<ResolvedSceneFile> {
   const url = source instanceof URL ? source : await sourceStringToUrl(source);
   let text: string;
   try {

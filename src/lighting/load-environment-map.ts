@@ -103,7 +103,11 @@ export async function loadEnvironmentMap(source: EnvironmentMapSource, options: 
   else if (isOpenExr(bytes)) image = await decodeOpenExr(bytes, field, options.EXRLoader);
   else throw new GpuRendererError('INVALID_ENVIRONMENT', 'not a Radiance .hdr ("#?" header) or OpenEXR file', { field });
   // The decoded texels are this call's own: zeroed in place (validation copies them anyway).
-  if (policy === 'zero') options.onNegativeTexels?.(zeroNegativeChannels(image.data));
+  if (policy === 'zero') {
+    // Zeroed whether or not anyone asks for the report (`f?.(g())` would skip g without f).
+    const report = zeroNegativeChannels(image.data);
+    options.onNegativeTexels?.(report);
+  }
   return validateEnvironmentMap(
     { width: image.width, height: image.height, data: image.data, intensity: options.intensity, rotationRadians: options.rotationRadians },
     field,

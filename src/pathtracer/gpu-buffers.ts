@@ -21,11 +21,16 @@ export class GpuBufferSet {
     return buffer;
   }
 
+  /** Destroys `buffer` and stops counting it. */
+  release(buffer: GPUBuffer): void {
+    const at = this.buffers.findIndex((b) => b.buffer === buffer);
+    if (at >= 0) this.buffers.splice(at, 1);
+    buffer.destroy();
+  }
+
   /** Destroys `old` and creates its successor of `size` bytes (a buffer that had to grow). */
   replace(old: GPUBuffer, label: string, size: number, usage: number, category: 'scene' | 'queue' | 'frame'): GPUBuffer {
-    const at = this.buffers.findIndex((b) => b.buffer === old);
-    if (at >= 0) this.buffers.splice(at, 1);
-    old.destroy();
+    this.release(old);
     return this.create(label, size, usage, category);
   }
 

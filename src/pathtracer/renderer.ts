@@ -28,7 +28,9 @@ import { WavefrontEncoder } from './frame-encoder.ts';
 import { GpuBufferSet, readGpuBuffer } from './gpu-buffers.ts';
 import { pathTracerPipelines, type PathTracerPipelines } from './pipelines.ts';
 import { FilmDisplay } from './presentation.ts';
-import { prepareGeometry, prepareMaterials, type PreparedScene } from './scene/prepare-scene.ts';
+import { prepareGeometry, prepareMaterials, sceneExtent, type PreparedScene } from './scene/prepare-scene.ts';
+import { SceneAcceleration } from './scene/scene-acceleration.ts';
+import { packGeometryUpdate, type WavefrontGeometryUpdate, type WavefrontGeometryUpdateStats } from './scene/geometry-update.ts';
 import { lightingOptionsOf, prepareSceneUpdate, type SceneSources } from './scene-update.ts';
 import { planInput, sceneFeatures } from './scene-plan.ts';
 import { planListWaves, planWaves, tileCount, type Wave } from './tiling.ts';
@@ -83,7 +85,7 @@ export async function createWavefrontPathTracingComputeRenderer(options: Wavefro
     const estimate = planInput(config, scene);
     checkBufferLimits(limits, planBuffers(estimate));
     const materials = prepareMaterials(scene, { maxTextureDimension2D: limits.maxTextureDimension2D, maxTextureArrayLayers: limits.maxTextureArrayLayers }, { energyCompensation: config.energyCompensation });
-    const prepared = await prepareGeometry(scene, materials);
+    const prepared = await prepareGeometry(scene, materials, { accelerationBuildMode: config.accelerationBuildMode });
     const lighting = buildGpuLighting({ config: config.lighting, triangles: { records: prepared.lights, count: prepared.lightCount }, sceneCenter: prepared.sceneCenter, sceneRadius: prepared.sceneRadius });
     const plan = planBuffers({ ...estimate, materialCells: prepared.materials.byteLength / 16, lightCount: prepared.lightCount, lightHeapCells: lighting.heap.byteLength / 16, primitiveCount: prepared.primitiveCount });
     checkBufferLimits(limits, plan);
@@ -93,8 +95,14 @@ export async function createWavefrontPathTracingComputeRenderer(options: Wavefro
       config.output.adaptive ? createAdaptivePipelines(acquired.device, features) : null,
       config.output.denoise ? createDenoisePipelines(acquired.device, features) : null,
     ]);
-    const sources: SceneSources = { scene, materials, features, lightingOptions: lightingOptionsOf(options) };
-    const renderer = new WavefrontRenderer(acquired, config, sources, prepared, lighting, { ...pipelines, adaptive: adaptivePipelines, denoise: denoisePipelines }, plan);
+    const sources: SceneSources = { materials, features, lightingOptions: lightingOptionsOf(options) };
+    const renderer = new WavefrontRenderer(acquired, config, scene, sources, prepared, lighting, { ...pipelines, adaptive: adaptivePipelines, denoise: denoisePipelines }, plan);
+    try {
+      await renderer.createAcceleration();
+    } catch (error) {
+      renderer.destroy();
+      throw error;
+    }
     if (canvas) await renderer.attachCanvas(canvas);
     return renderer;
   } catch (error) {
@@ -125,10 +133,12 @@ class WavefrontRenderer extends EventTarget implements WavefrontPathTracingRende
   private readonly ownsDevice: boolean;
   private readonly adapter: string;
   private config: WavefrontPathTracingComputeConfig;
-  private scene: { instanceCount: number; sceneObjectCount: number; prepared: PreparedScene };
-  /** What updateScene rebuilds geometry from: the normalized scene, the packed materials, the compiled features. */
+  private scene: { instanceCount: number; sceneObjectCount: number; prepared: PreparedScene; normalized: NormalizedScene };
+  /** What updateScene rebuilds geometry from: the packed materials, the compiled features, the lighting options. */
   private sources: SceneSources;
   private readonly kernels: PathTracerPipelines['kernels'];
+  /** The BVH on the device (build mode, refit and rebuild for geometry updates). */
+  private acceleration: SceneAcceleration | null = null;
   private readonly capacity: number;
   private readonly buffers: GpuBufferSet;
   private readonly resources: Record<PlannedBufferName, GPUBuffer>;
@@ -156,6 +166,7 @@ class WavefrontRenderer extends EventTarget implements WavefrontPathTracingRende
   constructor(
     acquired: { device: GPUDevice; ownsDevice: boolean; adapterDescription: string; timestampQueries: boolean },
     config: WavefrontPathTracingComputeConfig,
+    scene: NormalizedScene,
     sources: SceneSources,
     prepared: PreparedScene,
     lighting: GpuLighting,
@@ -167,18 +178,18 @@ class WavefrontRenderer extends EventTarget implements WavefrontPathTracingRende
     this.ownsDevice = acquired.ownsDevice;
     this.adapter = acquired.adapterDescription;
     this.config = config;
-    const scene = sources.scene;
     this.sources = sources;
     this.kernels = pipelines.kernels;
-    this.scene = { instanceCount: scene.instances.length, sceneObjectCount: scene.sceneObjects.length, prepared };
+    this.scene = { instanceCount: scene.instances.length, sceneObjectCount: scene.sceneObjects.length, prepared, normalized: scene };
     this.capacity = queueCapacity(config.width, config.height, config.tileSize);
     this.lighting = lighting;
     const b = (this.buffers = new GpuBufferSet(device));
     const S = BufferUsage.STORAGE;
+    // The BVH buffers hold any tree of the scene (2n - 1 nodes), so a rebuild fits; in 'gpu' mode the
+    // GPU build fills them (scene-acceleration.ts).
+    const gpuBuild = prepared.acceleration.mode === 'gpu';
     const uploads: Partial<Record<PlannedBufferName, ArrayBuffer>> = {
-      primitives: prepared.primitives,
-      bvhNodes: prepared.bvhNodes,
-      bvhParents: prepared.bvhParents.buffer as ArrayBuffer,
+      ...(gpuBuild ? {} : { primitives: prepared.primitives, bvhNodes: prepared.bvhNodes, bvhParents: prepared.bvhParents.buffer as ArrayBuffer }),
       alphaPrimitives: prepared.alphaPrimitives,
       instances: prepared.instances,
       indices: prepared.indices.buffer as ArrayBuffer,
@@ -209,7 +220,12 @@ class WavefrontRenderer extends EventTarget implements WavefrontPathTracingRende
     const resources = {} as Record<PlannedBufferName, GPUBuffer>;
     for (const [name, p] of Object.entries(plan) as [PlannedBufferName, PlannedBuffer][]) {
       const data = uploads[name];
-      resources[name] = data ? b.upload(name, data, S, p.category) : b.create(name, p.bytes, usage[name] ?? S, p.category);
+      if (name === 'bvhNodes' || name === 'bvhParents') {
+        resources[name] = b.create(name, Math.max(p.bytes, data?.byteLength ?? 0), S | BufferUsage.COPY_DST, p.category);
+        if (data) device.queue.writeBuffer(resources[name], 0, data);
+      } else {
+        resources[name] = data ? b.upload(name, data, S, p.category) : b.create(name, p.bytes, usage[name] ?? S, p.category);
+      }
     }
     this.resources = resources;
     const atlas = uploadTextureAtlas(device, prepared.atlas);
@@ -244,6 +260,46 @@ class WavefrontRenderer extends EventTarget implements WavefrontPathTracingRende
       this.deviceLost = true;
       this.deviceLostMessage = info.message || String(info.reason);
     });
+  }
+
+  /** Uploads or builds the BVH (accelerationBuildMode); called once by the factory. */
+  async createAcceleration(): Promise<void> {
+    const r = this.resources;
+    this.acceleration = await SceneAcceleration.create(this.device, this.scene.prepared, { primitives: r.primitives, bvhNodes: r.bvhNodes, bvhParents: r.bvhParents }, this.buffers);
+  }
+
+  async updateGeometry(update: WavefrontGeometryUpdate): Promise<WavefrontGeometryUpdateStats> {
+    this.assertUsable();
+    const started = performance.now();
+    const p = this.scene.prepared;
+    const packed = packGeometryUpdate(this.scene.normalized, p, update);
+    const extent = sceneExtent(packed.scene, packed.flat);
+    const lighting = packed.lights
+      ? buildGpuLighting({ config: this.config.lighting, triangles: { records: packed.lights.records, count: packed.lights.count }, sceneCenter: extent.sceneCenter, sceneRadius: extent.sceneRadius })
+      : this.lighting;
+    if (lighting.heap.byteLength > this.resources.lights.size) {
+      throw new GpuRendererError('INVALID_STATE', 'the update changes the size of the light tables; create a new renderer for it', { field: 'meshes' });
+    }
+    const queue = this.device.queue;
+    if (packed.vertexStreams) queue.writeBuffer(this.resources.vertexStreams, 0, packed.vertexStreams);
+    if (packed.instances) {
+      queue.writeBuffer(this.resources.instances, 0, packed.instances);
+      p.instances = packed.instances;
+    }
+    if (packed.lights) {
+      queue.writeBuffer(this.resources.lights, 0, lighting.heap);
+      queue.writeBuffer(this.resources.lighting, 0, lighting.uniforms);
+      this.lighting = lighting;
+      p.lights = packed.lights.records;
+      p.lightPower = packed.lights.totalPower;
+    }
+    this.scene.normalized = packed.scene;
+    p.sceneCenter = extent.sceneCenter;
+    p.sceneRadius = extent.sceneRadius;
+    this.writeFrameUniforms();
+    const accelerationMs = await this.acceleration!.update(packed.flat, packed.bvh);
+    this.resetAccumulation();
+    return { bvh: packed.bvh, accelerationMs, totalMs: performance.now() - started };
   }
 
   private writeFrameUniforms(): void {
@@ -528,25 +584,35 @@ class WavefrontRenderer extends EventTarget implements WavefrontPathTracingRende
 
   async updateScene(update: WavefrontSceneUpdate): Promise<void> {
     this.assertUsable();
-    const next = await prepareSceneUpdate(this.sources, this.config, update, this.device.limits);
+    const next = await prepareSceneUpdate(this.scene.normalized, this.sources, this.config, update, this.device.limits);
     this.assertUsable();
     // Every check passed: from here on nothing throws for the input.
     const p = next.prepared;
     let rebind = false;
-    const write = (name: PlannedBufferName, data: ArrayBuffer | ArrayBufferView): void => {
-      const bytes = ArrayBuffer.isView(data) ? data : new Uint8Array(data);
+    const ensure = (name: PlannedBufferName, bytes: number): GPUBuffer => {
       let buffer = this.resources[name];
-      if (buffer.size < bytes.byteLength) {
-        buffer = this.buffers.replace(buffer, name, bytes.byteLength, BufferUsage.STORAGE | BufferUsage.COPY_DST, 'scene');
+      if (buffer.size < bytes) {
+        buffer = this.buffers.replace(buffer, name, bytes, BufferUsage.STORAGE | BufferUsage.COPY_DST, 'scene');
         this.resources[name] = buffer;
         this.resourceMap[name] = buffer;
         rebind = true;
       }
-      this.device.queue.writeBuffer(buffer, 0, bytes.buffer, bytes.byteOffset, bytes.byteLength);
+      return buffer;
     };
-    write('primitives', p.primitives);
-    write('bvhNodes', p.bvhNodes);
-    write('bvhParents', p.bvhParents);
+    const write = (name: PlannedBufferName, data: ArrayBuffer | ArrayBufferView): void => {
+      const bytes = ArrayBuffer.isView(data) ? data : new Uint8Array(data);
+      this.device.queue.writeBuffer(ensure(name, bytes.byteLength), 0, bytes.buffer, bytes.byteOffset, bytes.byteLength);
+    };
+    // The BVH buffers hold any tree of the new scene (2n - 1 nodes), so later rebuilds fit.
+    const gpuBuild = p.acceleration.mode === 'gpu';
+    ensure('primitives', next.plan.primitives.bytes);
+    ensure('bvhNodes', Math.max(next.plan.bvhNodes.bytes, p.bvhNodes.byteLength));
+    ensure('bvhParents', Math.max(next.plan.bvhParents.bytes, p.bvhParents.byteLength));
+    if (!gpuBuild) {
+      write('primitives', p.primitives);
+      write('bvhNodes', p.bvhNodes);
+      write('bvhParents', p.bvhParents);
+    }
     write('alphaPrimitives', p.alphaPrimitives);
     write('instances', p.instances);
     write('indices', p.indices);
@@ -554,11 +620,16 @@ class WavefrontRenderer extends EventTarget implements WavefrontPathTracingRende
     write('lights', next.lighting.heap);
     if (rebind) this.encoderOfWaves = new WavefrontEncoder(createKernelBindGroups(this.device, this.kernels, this.resourceMap), this.resources.dispatchArgs, this.capacity);
     this.device.queue.writeBuffer(this.resources.lighting, 0, next.lighting.uniforms);
-    this.sources = { ...this.sources, scene: next.scene, lightingOptions: next.lightingOptions };
-    this.scene = { instanceCount: next.scene.instances.length, sceneObjectCount: next.scene.sceneObjects.length, prepared: p };
+    this.sources = { ...this.sources, lightingOptions: next.lightingOptions };
+    this.scene = { instanceCount: next.scene.instances.length, sceneObjectCount: next.scene.sceneObjects.length, prepared: p, normalized: next.scene };
     this.lighting = next.lighting;
     this.config = { ...this.config, lighting: next.lightingConfig, ...(next.camera ? { camera: next.camera } : {}) };
     this.instanceIds = instanceIdTables(next.scene, p);
+    // A new tree for the new primitives, in the renderer's build mode (the GPU builds it in 'gpu').
+    this.acceleration?.destroy();
+    this.acceleration = null;
+    const r = this.resources;
+    this.acceleration = await SceneAcceleration.create(this.device, p, { primitives: r.primitives, bvhNodes: r.bvhNodes, bvhParents: r.bvhParents }, this.buffers);
     this.writeFrameUniforms();
     this.resetAccumulation();
   }
@@ -652,6 +723,7 @@ class WavefrontRenderer extends EventTarget implements WavefrontPathTracingRende
     this.destroyed = true;
     this.display.detach();
     this.timing?.querySet.destroy();
+    this.acceleration?.destroy();
     this.buffers.destroy();
     this.atlasTexture.destroy();
     this.environmentTexture.destroy();

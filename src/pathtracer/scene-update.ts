@@ -1,7 +1,8 @@
 /**
  * `updateScene`'s CPU half: validate new meshes, instances and lights against the renderer's
- * materials, pack the geometry and build the BVH and the light tables again, and check that the
- * result fits the device and the compiled kernels, all before the renderer changes anything.
+ * materials, pack the geometry (and, in 'cpu-upload' mode, build the BVH) and the light tables
+ * again, and check that the result fits the device and the compiled kernels, all before the
+ * renderer changes anything.
  */
 import { GpuRendererError } from '../errors/gpu-renderer-error.ts';
 import { fail } from '../errors/validate.ts';
@@ -9,7 +10,7 @@ import { buildGpuLighting, type GpuLighting } from '../lighting/gpu-lighting.ts'
 import { validateLightingOptions, type LightingConfig, type WavefrontLightingOptions } from '../lighting/lighting-options.ts';
 import { normalizeSceneUpdate, type NormalizedScene } from '../scene/normalize-scene.ts';
 import type { ShaderFeatures } from '../shaders/features.ts';
-import { checkBufferLimits, planBuffers } from './buffer-plan.ts';
+import { checkBufferLimits, planBuffers, type PlannedBuffer, type PlannedBufferName } from './buffer-plan.ts';
 import { normalizeWavefrontCamera, type WavefrontCamera } from './camera.ts';
 import type { WavefrontPathTracingComputeConfig } from './config.ts';
 import { planInput, sceneFeatures } from './scene-plan.ts';
@@ -19,9 +20,8 @@ import type { WavefrontPathTracingOptions, WavefrontSceneUpdate } from './types.
 /** The lighting options a renderer keeps to validate new lights against (the environment stays). */
 export type LightingSources = WavefrontLightingOptions & { lights?: unknown };
 
-/** What a renderer keeps to rebuild its geometry. */
+/** What a renderer keeps to rebuild its geometry (besides its current normalized scene). */
 export interface SceneSources {
-  scene: NormalizedScene;
   materials: PreparedMaterials;
   /** The shader features the kernels were compiled with. */
   features: ShaderFeatures;
@@ -39,6 +39,8 @@ export function lightingOptionsOf(options: WavefrontPathTracingOptions): Lightin
 export interface PreparedSceneUpdate {
   scene: NormalizedScene;
   prepared: PreparedScene;
+  /** The buffer sizes of the new scene. */
+  plan: Record<PlannedBufferName, PlannedBuffer>;
   lighting: GpuLighting;
   lightingConfig: LightingConfig;
   lightingOptions: LightingSources;
@@ -55,6 +57,7 @@ function featureField(feature: string, update: WavefrontSceneUpdate): string {
 }
 
 export async function prepareSceneUpdate(
+  base: NormalizedScene,
   sources: SceneSources,
   config: WavefrontPathTracingComputeConfig,
   update: WavefrontSceneUpdate,
@@ -65,15 +68,16 @@ export async function prepareSceneUpdate(
     if (!updateKeys.has(key)) fail('INVALID_OPTION', key, `updateScene does not change ${key} (it replaces meshes, instances, lights and the camera)`);
   }
   const camera = update.camera === undefined ? undefined : normalizeWavefrontCamera(update.camera);
-  const scene = normalizeSceneUpdate(sources.scene, update);
+  const scene = normalizeSceneUpdate(base, update);
   const lightingOptions = update.lights === undefined ? sources.lightingOptions : { ...sources.lightingOptions, lights: update.lights };
   const lightingConfig = update.lights === undefined ? config.lighting : validateLightingOptions(lightingOptions, config.environment);
   const next = { ...config, lighting: lightingConfig };
   const estimate = planInput(next, scene);
   checkBufferLimits(limits, planBuffers(estimate));
-  const prepared = await prepareGeometry(scene, sources.materials);
+  const prepared = await prepareGeometry(scene, sources.materials, { accelerationBuildMode: config.accelerationBuildMode });
   const lighting = buildGpuLighting({ config: lightingConfig, triangles: { records: prepared.lights, count: prepared.lightCount }, sceneCenter: prepared.sceneCenter, sceneRadius: prepared.sceneRadius });
-  checkBufferLimits(limits, planBuffers({ ...estimate, lightCount: prepared.lightCount, lightHeapCells: lighting.heap.byteLength / 16, primitiveCount: prepared.primitiveCount }));
+  const plan = planBuffers({ ...estimate, lightCount: prepared.lightCount, lightHeapCells: lighting.heap.byteLength / 16, primitiveCount: prepared.primitiveCount });
+  checkBufferLimits(limits, plan);
   const features = sceneFeatures(prepared, lighting, next);
   const missing = (Object.keys(features) as (keyof ShaderFeatures)[]).filter((k) => features[k] && !sources.features[k]);
   if (missing.length > 0) {
@@ -83,5 +87,5 @@ export async function prepareSceneUpdate(
       { field: featureField(missing[0]!, update) },
     );
   }
-  return { scene, prepared, lighting, lightingConfig, lightingOptions, camera };
+  return { scene, prepared, plan, lighting, lightingConfig, lightingOptions, camera };
 }

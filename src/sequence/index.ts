@@ -4,5 +4,5 @@ export { parseFrameList, checkFrameNumbers, maxSequenceFrames } from './frame-li
 export { expandOutputPattern, outputPaths, fileSafeName, hasFramePlaceholder, hasVariantPlaceholder, hasCameraPlaceholder, type OutputPatternValues } from './output-pattern.ts';
 export { turntableCamera, checkTurntable, type TurntableOptions } from './turntable.ts';
 export { planGltfSequence, poseGltfSequenceItem, gltfSequence, sequencePatternValues, type GltfSequenceOptions, type GltfSequenceItem, type GltfSequenceFrame } from './gltf-sequence.ts';
-export { createSequenceRenderer, type SequenceRenderer, type SequenceRendererOptions } from './sequence-renderer.ts';
+export { createSequenceRenderer, sameTopology, type SequenceRenderer, type SequenceRendererOptions, type SequenceRendererSettings } from './sequence-renderer.ts';
 export { writeFrameFile, frameFileExists } from './frame-files.ts';

@@ -8,7 +8,7 @@ export interface ProgramSpec {
   /** Root module, e.g. `package::pathtracer::kernels::intersect`. */
   readonly module: string;
   /** Which binding table the program's bindings come from. */
-  readonly bindings: 'pathTracer' | 'display';
+  readonly bindings: 'pathTracer' | 'display' | 'bvhBuild';
 }
 
 export const programSpecs = {
@@ -24,6 +24,17 @@ export const programSpecs = {
   denoise: { module: 'package::post::denoise::atrous', bindings: 'pathTracer' },
   resolve: { module: 'package::post::display::resolve', bindings: 'display' },
   present: { module: 'package::post::display::present', bindings: 'display' },
+  // The GPU BVH builder and refitter (src/accel/gpu-build/), one program per group of passes so
+  // each pipeline layout stays within the default 8 storage buffers per stage.
+  bvhMorton: { module: 'package::accel::gpu_build::morton', bindings: 'bvhBuild' },
+  bvhSort: { module: 'package::accel::gpu_build::radix_sort', bindings: 'bvhBuild' },
+  bvhScan: { module: 'package::accel::gpu_build::prefix_scan', bindings: 'bvhBuild' },
+  bvhHierarchy: { module: 'package::accel::gpu_build::lbvh_hierarchy', bindings: 'bvhBuild' },
+  bvhGather: { module: 'package::accel::gpu_build::gather', bindings: 'bvhBuild' },
+  bvhFit: { module: 'package::accel::gpu_build::lbvh_fit', bindings: 'bvhBuild' },
+  bvhEmit: { module: 'package::accel::gpu_build::lbvh_emit', bindings: 'bvhBuild' },
+  bvhSummary: { module: 'package::accel::gpu_build::lbvh_summary', bindings: 'bvhBuild' },
+  bvhRefit: { module: 'package::accel::gpu_build::refit', bindings: 'bvhBuild' },
 } as const satisfies Record<string, ProgramSpec>;
 
 export type ProgramName = keyof typeof programSpecs;

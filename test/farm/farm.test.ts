@@ -42,7 +42,10 @@ interface Worker {
 
 function startWorker(redis: string): Worker {
   // Short locks so a killed worker's frame is taken over within seconds (production default: 30 s).
-  const child = spawn(process.execPath, [cli, 'farm', 'worker', '--redis', redis, '--lock-duration', '2000', '--stalled-interval', '500', '--exit-when-idle'], { stdio: ['ignore', 'ignore', 'pipe'] });
+  // GPU_RENDERER_CLI_STDERR_COLUMNS marks the CLI's rendering process: the worker renders in the
+  // process spawned here (no second one behind it), so SIGKILL stops the renderer itself.
+  const env = { ...process.env, GPU_RENDERER_CLI_STDERR_COLUMNS: '' };
+  const child = spawn(process.execPath, [cli, 'farm', 'worker', '--redis', redis, '--lock-duration', '2000', '--stalled-interval', '500', '--exit-when-idle'], { stdio: ['ignore', 'ignore', 'pipe'], env });
   const worker: Worker = { child, log: '', exited: new Promise((resolve) => child.on('close', (code) => resolve(code))) };
   child.stderr!.setEncoding('utf8').on('data', (d: string) => (worker.log += d));
   return worker;

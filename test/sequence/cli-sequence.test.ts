@@ -51,7 +51,9 @@ test('--frames 0-23 --fps 24 writes 24 frames posed at frame / fps; killed midwa
   const asset = await writeAsset(dir);
   const args = ['render', asset, '--frames', '0-23', '--fps', '24', '--camera', 'Front', '--out', join(dir, 'f-####.png'), ...RENDER];
   // The real executable, killed once a few frames are on disk.
-  const child = spawn(process.execPath, [cli, ...args], { stdio: ['ignore', 'ignore', 'pipe'] });
+  // GPU_RENDERER_CLI_STDERR_COLUMNS marks the CLI's rendering process: it renders in the process
+  // spawned here (no second one behind it), so SIGKILL stops the renderer itself.
+  const child = spawn(process.execPath, [cli, ...args], { stdio: ['ignore', 'ignore', 'pipe'], env: { ...process.env, GPU_RENDERER_CLI_STDERR_COLUMNS: '' } });
   let stderr = '';
   child.stderr.setEncoding('utf8').on('data', (d: string) => (stderr += d));
   const exited = new Promise<void>((resolve) => child.on('close', () => resolve()));

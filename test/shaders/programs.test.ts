@@ -5,6 +5,7 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { pathTracerBindings } from '../../src/gpu-layout/bindings.ts';
 import { displayBindings } from '../../src/shaders/display-bindings.ts';
+import { bvhBuildBindings } from '../../src/accel/gpu-build/bindings.ts';
 import { generatedPrograms } from '../../src/shaders/programs.generated.ts';
 import { programSpecs } from '../../src/shaders/programs.ts';
 import { shaderFeatures } from '../../src/shaders/features.ts';
@@ -14,7 +15,8 @@ import { testDevice } from '../helpers/gpu.ts';
 test('every program binds within WebGPU default limits and only table bindings', () => {
   for (const [name, spec] of Object.entries(programSpecs)) {
     const program = generatedPrograms[name as keyof typeof generatedPrograms];
-    const table: Record<string, { kind: string; group: number }> = spec.bindings === 'display' ? displayBindings : pathTracerBindings;
+    const tables: Record<typeof spec.bindings, Record<string, { kind: string; group: number }>> = { display: displayBindings, pathTracer: pathTracerBindings, bvhBuild: bvhBuildBindings };
+    const table = tables[spec.bindings];
     const storage = program.bindings.filter((b) => table[b]!.kind === 'storage').length;
     assert.ok(storage <= 8, `${name} binds ${storage} storage buffers`);
     assert.ok(Math.max(...program.bindings.map((b) => table[b]!.group)) < 4, `${name} uses more than 4 bind groups`);

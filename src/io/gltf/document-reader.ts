@@ -10,7 +10,7 @@ import { ALL_EXTENSIONS } from '@gltf-transform/extensions';
 import { GpuRendererError } from '../../errors/gpu-renderer-error.ts';
 import { locateCompressionFault } from './compression-faults.ts';
 import { failGltf, gltfError, pointer } from './errors.ts';
-import { IGNORED_OPTIONAL_EXTENSIONS, UNSUPPORTED_TEXTURE_EXTENSIONS } from './extensions.ts';
+import { SUPPORTED_EXTENSIONS } from './extensions.ts';
 import { isGlb, parseGlb } from './glb-container.ts';
 import { isObject, validateGltfJson } from './json-validation.ts';
 import { readResource, readUrl, sourceStringToUrl } from './resources.ts';
@@ -53,12 +53,12 @@ async function loadMeshopt(): Promise<unknown> {
 }
 
 function captureLogger(warnings: string[]): ILogger {
-  return {
-    debug: () => {},
-    info: () => {},
-    warn: (text: string) => warnings.push(`glTF reader: ${text}`),
-    error: (text: string) => warnings.push(`glTF reader: ${text}`),
+  const warn = (text: string): void => {
+    // Unregistered optional extensions are reported by readGltfDocument itself (supported or not).
+    if (/^Missing optional extension/.test(text)) return;
+    warnings.push(`glTF reader: ${text}`);
   };
+  return { debug: () => {}, info: () => {}, warn, error: warn };
 }
 
 async function sourceBytes(source: Exclude<GltfSource, Document>, signal: AbortSignal | undefined): Promise<{ bytes: Uint8Array; base: URL | undefined }> {
@@ -85,26 +85,6 @@ function parseJsonText(bytes: Uint8Array, field: string): unknown {
   } catch (error) {
     failGltf(field, `the glTF JSON does not parse: ${(error as Error).message}`, error);
   }
-}
-
-/**
- * KHR_texture_basisu / EXT_texture_avif are optional here (a required one was rejected during
- * validation): where the texture also names a core `source` image, drop the extension so the
- * reader keeps that fallback (the extension spec's intended behaviour for clients without the
- * codec); without a fallback the image stays and is dropped with a warning when decoding.
- */
-function preferFallbackSources(json: Record<string, unknown>, warnings: string[]): void {
-  const textures = Array.isArray(json.textures) ? json.textures : [];
-  textures.forEach((texture: unknown, i) => {
-    if (!isObject(texture) || !isObject(texture.extensions)) return;
-    for (const name of UNSUPPORTED_TEXTURE_EXTENSIONS) {
-      if (!(name in texture.extensions)) continue;
-      if (texture.source !== undefined) {
-        delete texture.extensions[name];
-        warnings.push(`${pointer('textures', i, 'extensions', name)}: ${name} images cannot be decoded; using the fallback image ${String(texture.source)}`);
-      }
-    }
-  });
 }
 
 interface LoadedResources {
@@ -188,11 +168,8 @@ export async function readGltfDocument(
   }
   const { json, bufferByteLengths } = validateGltfJson(rawJson);
   const used = Array.isArray(json.extensionsUsed) ? (json.extensionsUsed as unknown[]).filter((e): e is string => typeof e === 'string') : [];
-  for (const name of used) {
-    const note = IGNORED_OPTIONAL_EXTENSIONS[name];
-    if (note !== undefined) warnings.push(`${name}: ${note}`);
-  }
-  preferFallbackSources(json, warnings);
+  // A required one the renderer cannot express was refused during validation.
+  for (const name of used) if (!SUPPORTED_EXTENSIONS.has(name)) warnings.push(`${name}: not supported; the asset is drawn without it`);
   const { resources, buffers } = await loadResources(json, bufferByteLengths, bin, base, signal);
   signal?.throwIfAborted();
   validateSparseIndices(json, buffers);

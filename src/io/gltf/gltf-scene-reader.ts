@@ -36,6 +36,8 @@ export interface GltfLoadOptions extends GltfPoseOptions {
    * camera framing the scene bounds (see `GltfScene.camera`).
    */
   camera?: number | string;
+  /** Image width / height the default camera frames the bounds for (assets without a camera); default 1. */
+  aspectRatio?: number;
   /** KHR_materials_variants variant name; an unknown name throws INVALID_OPTION (field `variant`). */
   variant?: string;
   /** The glTF scene (index or name); default the asset's default scene, else its first scene. */
@@ -59,8 +61,9 @@ export interface GltfLoadOptions extends GltfPoseOptions {
  * - Skinned and morphed meshes are posed (skinned on the CPU) at `time` of `animation` (default the
  *   first animation at 0 s); animated nodes place meshes, cameras and lights where the animation has them.
  * - `camera` is the chosen glTF camera; its aspect ratio is the renderer's width / height (the glTF
- *   aspectRatio is not used). Without a camera it frames the scene bounds: looking at their centre
- *   from +Z with a 45 degree vertical field of view, at the distance where the bounding sphere fits.
+ *   aspectRatio is not used). Without a camera it frames the scene bounds (`frameBounds`): a raised
+ *   three-quarter view of their centre (azimuth 30 degrees from +Z towards +X, elevation 25, 45
+ *   degree vertical field of view) at the nearest distance where the whole box is in view.
  */
 export interface GltfScene {
   meshes: WavefrontMeshInput[];
@@ -70,7 +73,7 @@ export interface GltfScene {
   images: WavefrontImageInput[];
   camera: WavefrontCameraInput;
   lights: WavefrontPunctualLightInput[];
-  /** Non-enumerable. Things skipped, converted or dropped (points and lines, 16-bit images, KTX2 textures, ...). */
+  /** Non-enumerable. Things skipped, converted or dropped (points and lines, unsupported optional extensions, ...). */
   readonly warnings: readonly string[];
   /** Non-enumerable. Every camera placed in the scene, in node order. */
   readonly cameras: readonly GltfCameraInfo[];
@@ -339,7 +342,7 @@ async function poseAsset(asset: LoadedAsset, options: GltfLoadOptions): Promise<
   }
   asset.meshCache = meshCache;
   const bounds: GltfBounds | undefined = instances.length === 0 ? undefined : { min: boundsMin, max: boundsMax };
-  const camera = chooseCamera(cameras, options.camera, bounds);
+  const camera = chooseCamera(cameras, options.camera, bounds, options.aspectRatio);
   signal?.throwIfAborted();
 
   const scene = { meshes, instances, materials, textures: asset.table.textures, images: asset.table.images, camera, lights };
@@ -396,8 +399,8 @@ async function primitiveMeshes(asset: LoadedAsset, mesh: Mesh, m: number, weight
   return out;
 }
 
-function chooseCamera(cameras: readonly GltfCameraInfo[], choice: number | string | undefined, bounds: GltfBounds | undefined): WavefrontCameraInput {
-  if (choice === undefined) return cameras[0]?.camera ?? framingCamera(bounds);
+function chooseCamera(cameras: readonly GltfCameraInfo[], choice: number | string | undefined, bounds: GltfBounds | undefined, aspectRatio: number | undefined): WavefrontCameraInput {
+  if (choice === undefined) return cameras[0]?.camera ?? framingCamera(bounds, aspectRatio);
   const found = typeof choice === 'number' ? cameras.find((c) => c.cameraIndex === choice) : (cameras.find((c) => c.nodeName === choice) ?? cameras.find((c) => c.name === choice));
   if (found === undefined) {
     const known = cameras.map((c) => `${c.cameraIndex} ${JSON.stringify(c.name)}`).join(', ');

@@ -1,10 +1,10 @@
-import { buildBvhAsync } from '../../accel/bvh-builder.ts';
+import { buildBvhAsync, type BvhBuildResult } from '../../accel/bvh-builder.ts';
 import { bvhParentLinks, packPrimitives, packWavefrontBvhNodes } from '../../accel/triangle-packing.ts';
 import { Vec4Heap } from '../../gpu-layout/vec4-heap.ts';
 import { buildTextureAtlas, type TextureAtlas } from '../../materials/textures/texture-atlas.ts';
 import type { AtlasLimits } from '../../materials/textures/atlas-packer.ts';
 import type { NormalizedScene } from '../../scene/normalize-scene.ts';
-import { flattenPrimitives } from './flatten-primitives.ts';
+import { flattenPrimitives, type FlatPrimitives } from './flatten-primitives.ts';
 import { buildLightTable } from './light-table.ts';
 import { packInstances } from './pack-instances.ts';
 import { packMaterialTables, packMaterials, planMaterials, textureUsages, type MaterialFeatureUses, type TextureInfoOffsets } from './pack-materials.ts';
@@ -27,12 +27,22 @@ export interface PreparedScene {
   primitiveCount: number;
   triangleCount: number;
   bvh: { nodeCount: number; depth: number; sahCost: number; buildTimeMs: number };
+  /**
+   * How the BVH is built. 'cpu-upload': `bvhNodes`, `bvhParents` and `primitives` (in BVH order,
+   * slot s = flat primitive order[s]) are the CPU build's, ready to upload. 'gpu': `primitives`
+   * holds the records in scene order for the GPU builder (src/accel/gpu-build/), `bvhNodes` and
+   * `bvhParents` are empty and `bvh` is filled in once the GPU has built the tree.
+   */
+  acceleration: { mode: AccelerationBuildMode; order: Uint32Array | null };
   sceneCenter: [number, number, number];
   sceneRadius: number;
   /** Which optional shader features the scene needs (the rest are compiled out). */
   uses: { analyticShapes: boolean; alphaTest: boolean; textures: boolean; emissiveLights: boolean; materials: MaterialFeatureUses };
   warnings: string[];
 }
+
+/** Where the BVH is built: on the CPU and uploaded (default), or on the GPU (src/accel/gpu-build/). */
+export type AccelerationBuildMode = 'cpu-upload' | 'gpu';
 
 /** The material half of a prepared scene: the material heap and the texture atlas, independent of geometry. */
 export interface PreparedMaterials {
@@ -65,25 +75,28 @@ export function prepareMaterials(scene: NormalizedScene, limits: AtlasLimits, op
 }
 
 /**
- * Packs the geometry against prepared materials: vertex streams, world-space primitives and their
- * BVH, instance records and the emissive triangles. A scene whose meshes and instances change
- * (an animation's frames) re-runs only this half.
+ * Packs the geometry against prepared materials: vertex streams, world-space primitives and (in
+ * 'cpu-upload' mode) their BVH, instance records and the emissive triangles. A scene whose meshes
+ * and instances are replaced (`updateScene`) re-runs only this half.
  */
-export async function prepareGeometry(scene: NormalizedScene, materials: PreparedMaterials, options: { signal?: AbortSignal } = {}): Promise<PreparedScene> {
+export async function prepareGeometry(
+  scene: NormalizedScene,
+  materials: PreparedMaterials,
+  options: { signal?: AbortSignal; accelerationBuildMode?: AccelerationBuildMode } = {},
+): Promise<PreparedScene> {
   const { infoOffset } = materials;
   const streams = packVertexStreams(scene.meshes);
   const lights = buildLightTable(scene, infoOffset);
   const flat = flattenPrimitives(scene, infoOffset);
-  const bvh = await buildBvhAsync(flat.boundsTriangles, options.signal ? { signal: options.signal } : {});
-  const nodes = packWavefrontBvhNodes(bvh);
-  const { min, max } = flat.bounds;
-  const empty = scene.triangleCount + scene.sceneObjects.length === 0;
-  const sceneCenter: [number, number, number] = [0.5 * (min[0] + max[0]), 0.5 * (min[1] + max[1]), 0.5 * (min[2] + max[2])];
-  const sceneRadius = empty ? 1 : Math.max(1e-6, 0.5 * Math.hypot(max[0] - min[0], max[1] - min[1], max[2] - min[2]));
+  const gpu = options.accelerationBuildMode === 'gpu';
+  const cpuBvh = gpu ? null : await buildBvhAsync(flat.boundsTriangles, options.signal ? { signal: options.signal } : {});
+  const bvh = cpuBvh ?? gpuBuildPending(flat.count);
+  const nodes = cpuBvh ? packWavefrontBvhNodes(cpuBvh) : new ArrayBuffer(0);
+  const { sceneCenter, sceneRadius } = sceneExtent(scene, flat);
   return {
     primitives: packPrimitives(flat, bvh.triangleOrder),
     bvhNodes: nodes,
-    bvhParents: bvhParentLinks(nodes, bvh.nodeCount),
+    bvhParents: gpu ? new Uint32Array(0) : bvhParentLinks(nodes, bvh.nodeCount),
     alphaPrimitives: flat.alphaPrimitives,
     instances: packInstances(scene, streams, materials.materialOffsets, materials.objectMaterialOffsets, lights.lightBase),
     indices: streams.indices,
@@ -96,6 +109,7 @@ export async function prepareGeometry(scene: NormalizedScene, materials: Prepare
     primitiveCount: flat.count,
     triangleCount: scene.triangleCount,
     bvh: { nodeCount: bvh.nodeCount, depth: bvh.depth, sahCost: bvh.sahCost, buildTimeMs: bvh.buildTimeMs },
+    acceleration: { mode: gpu ? 'gpu' : 'cpu-upload', order: gpu ? null : bvh.triangleOrder },
     sceneCenter,
     sceneRadius,
     uses: { analyticShapes: scene.sceneObjects.length > 0, alphaTest: flat.alphaCount > 0, textures: materials.uses.textures, emissiveLights: lights.count > 0, materials: materials.uses.materials },
@@ -103,6 +117,24 @@ export async function prepareGeometry(scene: NormalizedScene, materials: Prepare
   };
 }
 
-export async function prepareScene(scene: NormalizedScene, limits: AtlasLimits, options: { signal?: AbortSignal; energyCompensation?: boolean } = {}): Promise<PreparedScene> {
+export async function prepareScene(
+  scene: NormalizedScene,
+  limits: AtlasLimits,
+  options: { signal?: AbortSignal; energyCompensation?: boolean; accelerationBuildMode?: AccelerationBuildMode } = {},
+): Promise<PreparedScene> {
   return prepareGeometry(scene, prepareMaterials(scene, limits, options), options);
+}
+
+/** Centre and radius of the scene's bounding sphere (radius 1 for an empty scene). */
+export function sceneExtent(scene: NormalizedScene, flat: FlatPrimitives): { sceneCenter: [number, number, number]; sceneRadius: number } {
+  const { min, max } = flat.bounds;
+  const empty = scene.triangleCount + scene.sceneObjects.length === 0;
+  const sceneCenter: [number, number, number] = [0.5 * (min[0] + max[0]), 0.5 * (min[1] + max[1]), 0.5 * (min[2] + max[2])];
+  const sceneRadius = empty ? 1 : Math.max(1e-6, 0.5 * Math.hypot(max[0] - min[0], max[1] - min[1], max[2] - min[2]));
+  return { sceneCenter, sceneRadius };
+}
+
+/** Before a GPU build: scene order (the identity) and no nodes yet. */
+function gpuBuildPending(count: number): Pick<BvhBuildResult, 'triangleOrder' | 'nodeCount' | 'depth' | 'sahCost' | 'buildTimeMs'> {
+  return { triangleOrder: Uint32Array.from({ length: count }, (_, i) => i), nodeCount: 0, depth: 0, sahCost: 0, buildTimeMs: 0 };
 }
