@@ -126,3 +126,39 @@ test('updateScene renders what a new renderer renders, grows its buffers for mor
     updated.destroy();
   }
 });
+
+test('a sequence renderer moves poses of one topology (updateGeometry), replaces a variant\'s geometry (updateScene), and updateScene rebuilds on the GPU in gpu build mode', async () => {
+  const device = await testDevice();
+  const { document } = createBendingTube({ variants: true });
+  const scene = await loadGltfScene(document, { camera: 'Front' });
+  const { createSequenceRenderer } = await import('../../src/sequence/sequence-renderer.ts');
+  const options = { device, width: W, height: H, samplesPerPixel: 2, maxDepth: 1, toneMapping: 'linear' as const };
+  const sequence = createSequenceRenderer(options);
+  try {
+    await sequence.show({ ...scene });
+    const moved = await scene.pose({ time: 0.7 });
+    const renderer = await sequence.show({ ...moved });
+    await renderer.renderFrame();
+    const fresh = await createWavefrontPathTracingComputeRenderer({ ...moved, ...options });
+    await fresh.renderFrame();
+    assert.ok(iou(redMask((await renderer.readPixels()).data), redMask((await fresh.readPixels()).data)) > 0.99, 'the moved renderer shows the new pose');
+    fresh.destroy();
+    const blue = await moved.pose({ variant: 'Blue' });
+    await sequence.show({ ...blue });
+    assert.deepEqual(sequence.counts, { created: 1, moved: 1, replaced: 1 });
+  } finally {
+    sequence.destroy();
+  }
+  // updateScene in 'gpu' build mode: the new tree is built on the GPU; the image is the fresh renderer's.
+  const bent = await scene.pose({ time: 0.4 });
+  const instances = [...bent.instances, { mesh: 0, transform: [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0.8, 0, 0, 1] }];
+  const gpu = await createWavefrontPathTracingComputeRenderer({ ...scene, ...options, accelerationBuildMode: 'gpu' });
+  await gpu.updateScene({ meshes: bent.meshes, instances });
+  await gpu.renderFrame();
+  const reference = await createWavefrontPathTracingComputeRenderer({ ...scene, ...options, meshes: bent.meshes, instances, accelerationBuildMode: 'gpu' });
+  await reference.renderFrame();
+  assert.deepEqual(Array.from((await gpu.readRadiance()).data), Array.from((await reference.readRadiance()).data));
+  assert.equal(gpu.getSnapshot().bvhNodeCount, reference.getSnapshot().bvhNodeCount);
+  gpu.destroy();
+  reference.destroy();
+});
