@@ -39,8 +39,11 @@ export interface RenderCommand {
   minSpp?: number;
   /** AOV layers written into an .exr output (--aov). */
   aovs: WavefrontAovName[];
-  /** Denoise the image (--denoise); an .exr keeps the raw beauty as layer raw.R/G/B. */
-  denoise: boolean;
+  /**
+   * Denoise the image (--denoise [oidn|atrous]): true picks the better denoiser the device runs
+   * (OIDN); an .exr keeps the raw beauty as layer raw.R/G/B.
+   */
+  denoise: boolean | 'oidn' | 'atrous';
   /** OpenEXR pixel type (--half: half floats, else float). */
   half: boolean;
   /** Multiple-scattering energy compensation on rough microfacets (off with --no-energy-compensation). */
@@ -132,7 +135,8 @@ Options:
                            exposure and tone mapping do not apply) (default ${renderDefaults.out})
   --aov <list>             .exr only: AOV layers, comma separated: albedo, normal, depth, emission,
                            objectId, materialId, variance, sampleCount
-  --denoise                denoise (edge-avoiding a-trous on the GPU); an .exr keeps the raw
+  --denoise [oidn|atrous]  denoise on the GPU: oidn (Open Image Denoise's network, the default) or
+                           atrous (the fast edge-avoiding a-trous preview); an .exr keeps the raw
                            beauty as layer raw.R/G/B
   --half                   .exr only: half-float channels (ids and counts stay float)
   --no-energy-compensation render rough microfacets single-scattering only (the glTF Appendix B
@@ -308,10 +312,17 @@ export function parseRenderArgs(argv: readonly string[]): RenderCommand | HelpCo
       case '--aov':
         command.aovs = parseAovList(take(), flag);
         break;
-      case '--denoise':
+      case '--denoise': {
+        // The value is optional: `--denoise=x`, or a following `oidn` / `atrous` (never a scene path).
+        const next = argv[i + 1];
+        if (value === undefined && (next === 'oidn' || next === 'atrous')) value = argv[++i];
+        if (value !== undefined && value !== 'oidn' && value !== 'atrous') invalid(flag, `expected oidn or atrous, got ${JSON.stringify(value)}`);
+        command.denoise = value === undefined ? true : (value as 'oidn' | 'atrous');
+        break;
+      }
       case '--half':
         if (value !== undefined) invalid(flag, 'takes no value');
-        command[flag === '--denoise' ? 'denoise' : 'half'] = true;
+        command.half = true;
         break;
       case '--no-energy-compensation':
         if (value !== undefined) invalid(flag, 'takes no value');

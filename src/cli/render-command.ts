@@ -249,7 +249,7 @@ export async function runRenderCommand(command: RenderCommand, io: { stderr: Pro
       samplesPerPixel: stats.samplesPerPixel,
       meanSamplesPerPixel: (stats.firstPixelSamples + stats.pixelSamples) / pixels,
       stoppedBy: stats.stoppedBy,
-      denoised: command.denoise,
+      ...(command.denoise ? { denoised: renderer.getSnapshot().denoise!.denoiser } : {}),
       aovs: command.aovs,
       firstFrameSeconds: stats.firstFrameMs / 1000,
       firstFrameSamplesPerPixel: stats.firstSamples,

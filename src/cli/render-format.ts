@@ -10,7 +10,8 @@ export interface RenderSummary {
   meanSamplesPerPixel?: number;
   /** What ended the render: the spp ceiling, --time or --noise (every pixel converged). */
   stoppedBy?: 'spp' | 'time' | 'noise';
-  denoised?: boolean;
+  /** The denoiser that ran ('oidn', 'atrous'), if any. */
+  denoised?: string;
   /** AOV layers written into the .exr. */
   aovs?: readonly string[];
   /**
@@ -50,7 +51,7 @@ export function formatSummary(s: RenderSummary): string {
   const adaptive = s.meanSamplesPerPixel !== undefined && s.meanSamplesPerPixel < s.samplesPerPixel - 1e-9 ? `, mean ${s.meanSamplesPerPixel.toFixed(1)}` : '';
   const extras = [
     s.stoppedBy && s.stoppedBy !== 'spp' ? `stopped by ${s.stoppedBy === 'time' ? 'the time limit' : 'the noise target'}` : '',
-    s.denoised ? 'denoised' : '',
+    s.denoised ? `denoised (${s.denoised === 'oidn' ? 'OIDN' : s.denoised === 'atrous' ? 'a-trous' : s.denoised})` : '',
     s.aovs && s.aovs.length > 0 ? `AOVs ${s.aovs.join(', ')}` : '',
   ].filter((e) => e !== '');
   return [

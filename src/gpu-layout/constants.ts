@@ -75,7 +75,11 @@ export const PRIMITIVE_SHAPE_SPHERE = 1;
 export const PRIMITIVE_SHAPE_BOX = 2;
 export const PRIMITIVE_SHAPE_MASK = 3;
 export const PRIMITIVE_FLAG_ALPHA = 4;
-export const PRIMITIVE_ALPHA_SHIFT = 3;
+/** A triangle of a single-sided material (glTF `doubleSided: false`): camera rays cull its back face. */
+export const PRIMITIVE_FLAG_SINGLE_SIDED = 8;
+/** Its instance mirrors (negative determinant): the front face is clockwise in world space. */
+export const PRIMITIVE_FLAG_MIRRORED = 16;
+export const PRIMITIVE_ALPHA_SHIFT = 5;
 
 export const INSTANCE_FLAG_NEGATIVE_DETERMINANT = 1 << 2;
 export const INSTANCE_FLAG_HAS_NORMALS = 1 << 3;
@@ -272,6 +276,8 @@ export const gpuConstants: Readonly<Record<string, number>> = Object.freeze({
   PRIMITIVE_SHAPE_BOX,
   PRIMITIVE_SHAPE_MASK,
   PRIMITIVE_FLAG_ALPHA,
+  PRIMITIVE_FLAG_SINGLE_SIDED,
+  PRIMITIVE_FLAG_MIRRORED,
   PRIMITIVE_ALPHA_SHIFT,
   INSTANCE_FLAG_NEGATIVE_DETERMINANT,
   INSTANCE_FLAG_HAS_NORMALS,

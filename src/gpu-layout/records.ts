@@ -20,7 +20,7 @@ export const primitiveLayout: StructLayout = defineStructLayout('Primitive', 2, 
   ['e1', 'vec3f', 'v1 - v0'],
   ['primitive', 'u32', 'triangle index within the instance mesh'],
   ['e2', 'vec3f', 'v2 - v0'],
-  ['shape', 'u32', 'kind | PRIMITIVE_FLAG_ALPHA | alpha record index << PRIMITIVE_ALPHA_SHIFT'],
+  ['shape', 'u32', 'kind | PRIMITIVE_FLAG_ALPHA | PRIMITIVE_FLAG_SINGLE_SIDED | PRIMITIVE_FLAG_MIRRORED | alpha record index << PRIMITIVE_ALPHA_SHIFT'],
 ]);
 
 /** Flattened BVH node: interior nodes keep both children adjacent at leftOrFirst, leftOrFirst + 1. */
@@ -577,6 +577,38 @@ export const denoiseUniformsLayout: StructLayout = defineStructLayout('DenoiseUn
   ['sigmaDepth', 'f32', 'depth edge-stopping, in depth-gradient units'],
 ]);
 
+/** One convolution of the OIDN network (src/post/denoise/oidn/conv.wesl). */
+export const oidnConvUniformsLayout: StructLayout = defineStructLayout('OidnConvUniforms', 1, [
+  ['size', 'vec2u', 'resolution the convolution runs at (width, height)'],
+  ['sourceA', 'u32', 'vec4 channel groups of the first source'],
+  ['sourceB', 'u32', 'vec4 channel groups of the concatenated second source (0: none)'],
+  ['upsample', 'u32', '1: the first source is at half resolution (nearest-neighbour 2x upsampling)'],
+  ['pool', 'u32', '1: the output is 2x2 max pooled'],
+  ['destination', 'u32', 'vec4 channel groups of the destination'],
+  ['blocks', 'u32', '16-channel output blocks (the weights hold blocks x 4 bias vec4s first)'],
+]);
+
+/** One tile of the OIDN input, output and autoexposure passes (src/post/denoise/oidn/image.wesl). */
+export const oidnImageUniformsLayout: StructLayout = defineStructLayout('OidnImageUniforms', 1, [
+  ['imageSize', 'vec2u'],
+  ['tileOrigin', 'vec2u', 'image pixel of the tile tensor\'s pixel (0, 0)'],
+  ['tileSize', 'vec2u', 'tile tensor size (multiples of 16)'],
+  ['writeMin', 'vec2u', 'first image pixel the output pass writes'],
+  ['writeMax', 'vec2u', 'one past the last image pixel it writes'],
+  ['exposureBins', 'vec2u', 'autoexposure bins across and down'],
+  ['colorStride', 'u32', 'vec4s per pixel of the colour buffer'],
+  ['divideByCount', 'u32', '1: colour, albedo and normal are sums over the colour\'s alpha (a film)'],
+  ['albedoStride', 'u32'],
+  ['albedoOffset', 'u32'],
+  ['normalStride', 'u32'],
+  ['normalOffset', 'u32'],
+  ['emissionStride', 'u32', '0: no emission bypass'],
+  ['emissionOffset', 'u32'],
+  ['inputChannels', 'u32', '3 colour, 6 + albedo, 9 + normal'],
+  ['autoexposure', 'u32', '1: the input scale comes from the autoexposure pass'],
+  ['inputScale', 'f32', 'the input scale when autoexposure is 0'],
+]);
+
 /** Every record layout, by WGSL struct name. */
 export const wavefrontRecordLayouts = {
   Primitive: primitiveLayout,
@@ -617,6 +649,8 @@ export const wavefrontRecordLayouts = {
   ResolveUniforms: resolveUniformsLayout,
   AdaptiveUniforms: adaptiveUniformsLayout,
   DenoiseUniforms: denoiseUniformsLayout,
+  OidnConvUniforms: oidnConvUniformsLayout,
+  OidnImageUniforms: oidnImageUniformsLayout,
 } as const;
 
 /** Records stored in vec4 heaps get generated WGSL loaders (`load_<snake name>(heap offset)`). */

@@ -4,7 +4,7 @@ export interface AcquireGpuDeviceOptions {
   /** Share an existing device instead of creating one. */
   device?: GPUDevice;
   powerPreference?: GPUPowerPreference;
-  /** Features to enable when present on the adapter (missing ones are skipped, not errors). */
+  /** Features to enable when present on the adapter (missing ones are skipped, not errors); default timestamp-query and shader-f16. */
   optionalFeatures?: readonly GPUFeatureName[];
 }
 
@@ -63,7 +63,8 @@ export async function acquireGpuDevice(options: AcquireGpuDeviceOptions = {}): P
   if (!gpu) throw new GpuRendererError('WEBGPU_UNAVAILABLE', 'WebGPU is not available in this environment (no navigator.gpu and no Dawn).');
   const adapter = await gpu.requestAdapter(options.powerPreference ? { powerPreference: options.powerPreference } : undefined);
   if (!adapter) throw new GpuRendererError('WEBGPU_UNAVAILABLE', 'No WebGPU adapter is available.');
-  const wanted = options.optionalFeatures ?? ['timestamp-query'];
+  // shader-f16: the OIDN denoiser's half-precision network (src/post/denoise/oidn).
+  const wanted = options.optionalFeatures ?? ['timestamp-query', 'shader-f16'];
   const requiredFeatures = wanted.filter((f) => adapter.features.has(f));
   // Ask for the adapter's own storage limits: scenes are bounded by what the device really offers.
   const requiredLimits: Record<string, number> = {

@@ -18,7 +18,8 @@ import { resolveCanvasTarget } from './canvas-target.ts';
 import { createWavefrontPathTracingComputeConfig, type WavefrontPathTracingComputeConfig } from './config.ts';
 import { instanceMaterial } from './scene/flatten-primitives.ts';
 import { AdaptiveScheduler, createAdaptivePipelines } from './adaptive-scheduler.ts';
-import { AtrousDenoisePass, createDenoisePipelines } from './denoise-pass.ts';
+import type { WavefrontDenoiser, WavefrontDenoiserFactory } from '../post/denoise/denoiser.ts';
+import { prepareWavefrontDenoiser, resolveWavefrontDenoiser } from './denoise-pass.ts';
 import { DispatchTally } from './dispatch-tally.ts';
 import { readAovImage, readMeanRadiance, readRgbaImage, type InstanceIds } from './film.ts';
 import { encodeFrameReadback, frameStatsFromCounters, readFrameReadback } from './frame-stats.ts';
@@ -81,6 +82,7 @@ export async function createWavefrontPathTracingComputeRenderer(options: Wavefro
     ...(options.powerPreference ? { powerPreference: options.powerPreference } : {}),
   });
   try {
+    resolveWavefrontDenoiser(config.output, acquired.device);
     const limits = acquired.device.limits;
     const estimate = planInput(config, scene);
     checkBufferLimits(limits, planBuffers(estimate));
@@ -93,7 +95,7 @@ export async function createWavefrontPathTracingComputeRenderer(options: Wavefro
     const [pipelines, adaptivePipelines, denoisePipelines] = await Promise.all([
       pathTracerPipelines(acquired.device, features),
       config.output.adaptive ? createAdaptivePipelines(acquired.device, features) : null,
-      config.output.denoise ? createDenoisePipelines(acquired.device, features) : null,
+      config.output.denoise ? prepareWavefrontDenoiser(acquired.device, config.output.denoise, config.output.denoiseWeights, features) : null,
     ]);
     const sources: SceneSources = { materials, features, lightingOptions: lightingOptionsOf(options) };
     const renderer = new WavefrontRenderer(acquired, config, scene, sources, prepared, lighting, { ...pipelines, adaptive: adaptivePipelines, denoise: denoisePipelines }, plan);
@@ -116,7 +118,7 @@ export const adaptiveStepSamples = 4;
 
 type RendererPipelines = PathTracerPipelines & {
   adaptive: Awaited<ReturnType<typeof createAdaptivePipelines>> | null;
-  denoise: Awaited<ReturnType<typeof createDenoisePipelines>> | null;
+  denoise: WavefrontDenoiserFactory | null;
 };
 
 /** What one frame's passes produced, before the statistics are read back. */
@@ -151,7 +153,7 @@ class WavefrontRenderer extends EventTarget implements WavefrontPathTracingRende
   private readonly display: FilmDisplay;
   private readonly timing: { querySet: GPUQuerySet; resolve: GPUBuffer } | null;
   private readonly adaptive: AdaptiveScheduler | null;
-  private readonly denoiser: AtrousDenoisePass | null;
+  private readonly denoiser: WavefrontDenoiser | null;
   private instanceIds: InstanceIds;
   private frameCount = 0;
   private samplesAccumulated = 0;
@@ -248,7 +250,7 @@ class WavefrontRenderer extends EventTarget implements WavefrontPathTracingRende
     this.display = new FilmDisplay(device, pipelines.resolve, map, out.denoise ? resources.denoised : undefined);
     if (out.denoise?.present === 'denoised') this.display.source = 'denoised';
     this.adaptive = out.adaptive && pipelines.adaptive ? new AdaptiveScheduler(device, pipelines.adaptive, map, out.adaptive, config.width, config.height) : null;
-    this.denoiser = out.denoise && pipelines.denoise ? new AtrousDenoisePass(device, pipelines.denoise, map, out.denoise, config.width, config.height, b) : null;
+    this.denoiser = pipelines.denoise?.create({ device, width: config.width, height: config.height, resources: map, createBuffer: (label, size, usage) => b.create(label, size, usage, 'frame') }) ?? null;
     this.adaptive?.reset();
     this.instanceIds = instanceIdTables(scene, prepared);
     device.queue.writeBuffer(resources.bounce, 0, packBounceUniforms(config.maxDepth, this.capacity));
@@ -724,6 +726,7 @@ class WavefrontRenderer extends EventTarget implements WavefrontPathTracingRende
     this.display.detach();
     this.timing?.querySet.destroy();
     this.acceleration?.destroy();
+    this.denoiser?.destroy();
     this.buffers.destroy();
     this.atlasTexture.destroy();
     this.environmentTexture.destroy();

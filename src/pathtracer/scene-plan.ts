@@ -28,7 +28,7 @@ export function planInput(config: WavefrontPathTracingComputeConfig, scene: Norm
     tileSize: config.tileSize,
     maxDepth: config.maxDepth,
     aovs: outputFeatures(config).aovs,
-    output: { moments: outputFeatures(config).moments, adaptive: config.output.adaptive !== null, denoise: config.output.denoise !== null },
+    output: { moments: outputFeatures(config).moments, adaptive: config.output.adaptive !== null, denoise: config.output.denoise !== null, atrous: config.output.denoise?.denoiser === 'atrous' },
     wavesPerSubmission: config.output.maxFramePassesPerSubmission,
     ...vertexStreamBytes(scene.meshes),
     primitiveCount: scene.triangleCount + scene.sceneObjects.length,
@@ -43,7 +43,7 @@ export function planInput(config: WavefrontPathTracingComputeConfig, scene: Norm
 /** Output accumulation the options need: the denoiser's guides are the AOVs, its variance the moments. */
 export function outputFeatures(config: WavefrontPathTracingComputeConfig): { aovs: boolean; moments: boolean } {
   const denoise = config.output.denoise !== null;
-  return { aovs: config.aovs || denoise, moments: config.aovs || denoise || config.output.adaptive !== null };
+  return { aovs: config.aovs || denoise, moments: config.aovs || config.output.denoise?.denoiser === 'atrous' || config.output.adaptive !== null };
 }
 
 /** The shader features a scene needs; everything else is compiled out. */

@@ -8,7 +8,9 @@ export interface ProgramSpec {
   /** Root module, e.g. `package::pathtracer::kernels::intersect`. */
   readonly module: string;
   /** Which binding table the program's bindings come from. */
-  readonly bindings: 'pathTracer' | 'display' | 'bvhBuild';
+  readonly bindings: 'pathTracer' | 'display' | 'bvhBuild' | 'oidn';
+  /** WESL `@if` conditions the program is linked with (e.g. `f16`). */
+  readonly conditions?: Readonly<Record<string, boolean>>;
 }
 
 export const programSpecs = {
@@ -35,6 +37,13 @@ export const programSpecs = {
   bvhEmit: { module: 'package::accel::gpu_build::lbvh_emit', bindings: 'bvhBuild' },
   bvhSummary: { module: 'package::accel::gpu_build::lbvh_summary', bindings: 'bvhBuild' },
   bvhRefit: { module: 'package::accel::gpu_build::refit', bindings: 'bvhBuild' },
+  oidnConv: { module: 'package::post::denoise::oidn::conv', bindings: 'oidn' },
+  oidnConvF16: { module: 'package::post::denoise::oidn::conv', bindings: 'oidn', conditions: { f16: true } },
+  oidnExposure: { module: 'package::post::denoise::oidn::exposure', bindings: 'oidn' },
+  oidnInput: { module: 'package::post::denoise::oidn::input', bindings: 'oidn' },
+  oidnInputF16: { module: 'package::post::denoise::oidn::input', bindings: 'oidn', conditions: { f16: true } },
+  oidnOutput: { module: 'package::post::denoise::oidn::output', bindings: 'oidn' },
+  oidnOutputF16: { module: 'package::post::denoise::oidn::output', bindings: 'oidn', conditions: { f16: true } },
 } as const satisfies Record<string, ProgramSpec>;
 
 export type ProgramName = keyof typeof programSpecs;

@@ -3,6 +3,12 @@
  * space glTF 2.0 section 3.7.2.1 prescribes when TANGENT is absent), computed with the `mikktspace`
  * WebAssembly port as @gltf-transform's `tangents()` does: the mesh is unwelded to one vertex per
  * triangle corner, tangents are generated, and identical corners are welded back together.
+ *
+ * Handedness: MikkTSpace's bitangent follows increasing v (a bottom-left texture origin), while
+ * glTF's texture coordinates start at the image's top left (glTF 2.0 section 3.8.3) and its
+ * normal textures' +Y is up (material.schema.json, normalTexture), so glTF's bitangent cross(N, T) w follows decreasing v:
+ * every generated w is negated, as the mikktspace package prescribes for glTF and three.js's
+ * computeMikkTSpaceTangents does. Authored TANGENTs (Blender's glTF exporter) agree.
  */
 import type { VertexStreams } from './vertex-streams.ts';
 
@@ -107,6 +113,7 @@ export async function withMikkTSpaceTangents(streams: VertexStreams, texCoord: n
   const cornerNormals = streams.normals === undefined ? flatNormals(cornerPositions) : unweld(streams.normals, 3, corners);
   const cornerUvs = unweld(uvs, 2, corners);
   const tangents = generate(cornerPositions, cornerNormals, cornerUvs);
+  for (let w = 3; w < tangents.length; w += 4) tangents[w] = -tangents[w]!;
 
   const perCorner: Array<{ name: keyof VertexStreams; values: Float32Array; size: number }> = [
     { name: 'positions', values: cornerPositions, size: 3 },
