@@ -3,6 +3,7 @@ import { GpuRendererError } from '../errors/gpu-renderer-error.ts';
 import type { WavefrontAovName } from '../post/aovs.ts';
 import { imageFileFormatFromPath, type ImageFileFormat } from '../post/files/image-file.ts';
 import { parseAovList, parseDuration } from '../post/option-parsing.ts';
+import { parseOrigin } from '../io/resource-policy.ts';
 import type { WavefrontToneMapping } from '../scene/types.ts';
 import { parseFrameList } from '../sequence/frame-list.ts';
 import { parseFarmArgs, type FarmCommand } from './farm-args.ts';
@@ -82,6 +83,8 @@ export interface RenderCommand {
   fovYDegrees?: number;
   /** Where the BVH is built (`--bvh-build`): 'cpu-upload' (the renderer's default) or 'gpu'. */
   accelerationBuildMode?: 'cpu-upload' | 'gpu';
+  /** Origins the scene's references may be fetched from (`--allow-origin`, repeatable); default none. */
+  allowedOrigins?: string[];
 }
 
 export interface HelpCommand {
@@ -176,6 +179,9 @@ Sequences (glTF; --out holds #### for the frame number, {variant} and {camera} f
                            interrupted sequence resumes)
   --bvh-build <where>      cpu-upload (binned SAH on the CPU, the default) | gpu (LBVH built on the
                            GPU: faster to build on a real GPU, its tree ~25-30 % costlier (SAH))
+  --allow-origin <origin>  let the scene's references fetch from this origin (e.g.
+                           https://cdn.example.com; repeatable or comma separated). By default a
+                           scene reads only files in its own folder and makes no network request
   -h, --help               show this help
 `;
 
@@ -414,6 +420,9 @@ export function parseRenderArgs(argv: readonly string[]): RenderCommand | HelpCo
         command.fovYDegrees = fov;
         break;
       }
+      case '--allow-origin':
+        for (const origin of take().split(',')) (command.allowedOrigins ??= []).push(parseOrigin(origin.trim(), flag));
+        break;
       default:
         invalid(flag, `unknown option (see --help)`);
     }

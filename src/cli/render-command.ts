@@ -22,6 +22,7 @@ import type { SequenceRendererOptions } from '../sequence/sequence-renderer.ts';
 import { createProgressBar, type ProgressEstimate, type ProgressStream } from './progress.ts';
 import type { RenderSummary } from './render-format.ts';
 import { isGltfPath, type RenderCommand } from './args.ts';
+import type { ResourcePolicy } from '../io/resource-policy.ts';
 
 export type { RenderSummary } from './render-format.ts';
 
@@ -58,12 +59,12 @@ function animationChoice(animations: readonly GltfAnimationInfo[], text: string 
 /** Loads a glTF asset posed as the command asks (`--animation`, `--at`, `--camera`, `--variant`). */
 export async function loadGltfForCommand(
   scenePath: string,
-  options: { camera?: string; variant?: string; animation?: string; at?: number; aspectRatio?: number; stderr?: ProgressStream },
+  options: { camera?: string; variant?: string; animation?: string; at?: number; aspectRatio?: number; stderr?: ProgressStream; resourcePolicy?: ResourcePolicy },
 ): Promise<GltfScene> {
   // Loaded on demand so JSON scenes never pull in the glTF reader and its decoders.
   const { loadGltfScene } = await import('../io/gltf/load-gltf-scene.ts');
   try {
-    let gltf = await loadGltfScene(scenePath, { camera: options.camera, variant: options.variant, ...(options.aspectRatio !== undefined ? { aspectRatio: options.aspectRatio } : {}) });
+    let gltf = await loadGltfScene(scenePath, { camera: options.camera, variant: options.variant, ...(options.resourcePolicy ? { resourcePolicy: options.resourcePolicy } : {}), ...(options.aspectRatio !== undefined ? { aspectRatio: options.aspectRatio } : {}) });
     if (options.animation !== undefined || options.at !== undefined) {
       gltf = await gltf.pose({ ...(options.animation !== undefined ? { animation: animationChoice(gltf.animations, options.animation) } : {}), ...(options.at !== undefined ? { time: options.at } : {}) });
     }
@@ -80,7 +81,7 @@ export async function loadGltfForCommand(
  */
 export async function loadScene(
   scenePath: string | undefined,
-  options: { camera?: string; variant?: string; animation?: string; at?: number; stderr?: ProgressStream; aspectRatio?: number; negativeTexels?: 'zero' | 'error' } = {},
+  options: { camera?: string; variant?: string; animation?: string; at?: number; stderr?: ProgressStream; aspectRatio?: number; negativeTexels?: 'zero' | 'error'; resourcePolicy?: ResourcePolicy } = {},
 ): Promise<WavefrontSceneDescription & { environmentMap?: EnvironmentMapInput }> {
   if (scenePath === undefined) return createCornellBoxScene();
   if (isGltfPath(scenePath)) {
@@ -91,6 +92,7 @@ export async function loadScene(
   const { loadSceneFile } = await import('../io/scene-file-loader.ts');
   const file = await loadSceneFile(scenePath, {
     negativeTexels: options.negativeTexels ?? 'error',
+    resourcePolicy: options.resourcePolicy,
     onNegativeTexels: (report, field) => {
       const text = negativeTexelNote(field, report);
       if (text !== undefined) options.stderr?.write(`note: ${text}\n`);
@@ -216,8 +218,14 @@ export async function accumulateImage(renderer: WavefrontPathTracingRenderer, co
   return { samplesPerPixel: accumulated, stoppedBy, firstFrameMs, firstSamples, firstPixelSamples: first.rays.camera, firstRays: first.rays.total, pixelSamples, rays, renderMs, invalidSamples };
 }
 
+/** What the scene's references may touch: their own folder, and the origins --allow-origin names. */
+export function commandResourcePolicy(command: Pick<RenderCommand, 'allowedOrigins'>): ResourcePolicy {
+  return { allowedOrigins: command.allowedOrigins ?? [] };
+}
+
 export async function runRenderCommand(command: RenderCommand, io: { stderr: ProgressStream } = { stderr: process.stderr }): Promise<RenderSummary> {
   const t0 = performance.now();
+  const resourcePolicy = commandResourcePolicy(command);
   const loaded = await loadScene(command.scenePath, {
     camera: command.camera,
     variant: command.variant,
@@ -226,8 +234,9 @@ export async function runRenderCommand(command: RenderCommand, io: { stderr: Pro
     stderr: io.stderr,
     aspectRatio: command.width / command.height,
     negativeTexels: command.negativeTexels,
+    resourcePolicy,
   });
-  const lit = await applyEnvironmentFlags(loaded, command, (text) => io.stderr.write(`note: ${text}\n`));
+  const lit = await applyEnvironmentFlags(loaded, command, (text) => io.stderr.write(`note: ${text}\n`), resourcePolicy);
   const scene = applyCameraFlags(lit, command);
   const renderer: WavefrontPathTracingRenderer = await createWavefrontPathTracingComputeRenderer({ ...rendererSettings(command), ...scene });
   try {

@@ -13,7 +13,7 @@ import type { RenderCommand } from './args.ts';
 import { applyCameraFlags } from './camera-flags.ts';
 import { applyEnvironmentFlags } from './environment-flags.ts';
 import { createProgressBar, formatDuration, type ProgressStream } from './progress.ts';
-import { accumulateImage, encodeOutput, loadGltfForCommand, rendererSettings, withCliFlag } from './render-command.ts';
+import { accumulateImage, commandResourcePolicy, encodeOutput, loadGltfForCommand, rendererSettings, withCliFlag } from './render-command.ts';
 
 export interface SequenceSummary {
   kind: 'sequence';
@@ -58,13 +58,14 @@ export function planCommandSequence(gltf: GltfScene, command: RenderCommand): { 
 /** Runs a sequence command; `io.device` renders on that device (default: one acquired for the run). */
 export async function runSequenceCommand(command: RenderCommand, io: { stderr: ProgressStream; device?: GPUDevice } = { stderr: process.stderr }): Promise<SequenceSummary> {
   const t0 = performance.now();
-  const gltf = await loadGltfForCommand(command.scenePath as string, { camera: command.camera, variant: command.variant, animation: command.animation, at: command.at, aspectRatio: command.width / command.height, stderr: io.stderr });
+  const resourcePolicy = commandResourcePolicy(command);
+  const gltf = await loadGltfForCommand(command.scenePath as string, { camera: command.camera, variant: command.variant, animation: command.animation, at: command.at, aspectRatio: command.width / command.height, stderr: io.stderr, resourcePolicy });
   const { items, paths } = planCommandSequence(gltf, command);
   const todo: number[] = [];
   for (let i = 0; i < items.length; i++) if (command.overwrite || !(await frameFileExists(paths[i]!))) todo.push(i);
   let skipped = items.length - todo.length;
   if (skipped > 0) io.stderr.write(`sequence: ${skipped} of ${items.length} frames already on disk, skipped (--overwrite renders them again)\n`);
-  const lighting = await applyEnvironmentFlags({}, command, (text) => io.stderr.write(`note: ${text}\n`));
+  const lighting = await applyEnvironmentFlags({}, command, (text) => io.stderr.write(`note: ${text}\n`), resourcePolicy);
   // --orbit / --camera-position: one camera for every frame, placed around the loaded pose's bounds.
   const placed = command.orbit !== undefined || command.cameraPosition !== undefined ? applyCameraFlags({ ...gltf }, command).camera : undefined;
   const sequence = createSequenceRenderer({ ...rendererSettings(command), ...lighting, ...(io.device ? { device: io.device } : {}) });

@@ -10,7 +10,7 @@ import { createHash } from 'node:crypto';
 import { basename } from 'node:path';
 import type { RenderCommand } from '../cli/args.ts';
 import type { ProgressStream } from '../cli/progress.ts';
-import { loadGltfForCommand } from '../cli/render-command.ts';
+import { commandResourcePolicy, loadGltfForCommand } from '../cli/render-command.ts';
 import { planCommandSequence } from '../cli/sequence-command.ts';
 import { GpuRendererError } from '../errors/gpu-renderer-error.ts';
 import { frameFileExists } from '../sequence/frame-files.ts';
@@ -55,7 +55,7 @@ export async function submitFarmJob(input: RenderCommand, options: FarmSubmitOpt
   const attempts = options.attempts ?? 3;
   const backoffMs = options.backoffMs ?? 5000;
   if (!(await frameFileExists(command.scenePath!))) throw new GpuRendererError('INVALID_OPTION', `no asset at ${command.scenePath}`, { field: 'scene' });
-  const gltf = await loadGltfForCommand(command.scenePath!, { camera: command.camera, variant: command.variant, animation: command.animation, at: command.at, ...(options.stderr ? { stderr: options.stderr } : {}) });
+  const gltf = await loadGltfForCommand(command.scenePath!, { camera: command.camera, variant: command.variant, animation: command.animation, at: command.at, aspectRatio: command.width / command.height, resourcePolicy: commandResourcePolicy(command), ...(options.stderr ? { stderr: options.stderr } : {}) });
   const { items, paths } = planCommandSequence(gltf, command);
   const name = options.name ?? jobName(command, paths);
   const render = frameRenderSettings(command);

@@ -13,7 +13,7 @@
 import { hostname } from 'node:os';
 import type * as BullMQ from 'bullmq';
 import type { ProgressStream } from '../cli/progress.ts';
-import { accumulateImage, encodeOutput, loadGltfForCommand, rendererSettings } from '../cli/render-command.ts';
+import { accumulateImage, commandResourcePolicy, encodeOutput, loadGltfForCommand, rendererSettings } from '../cli/render-command.ts';
 import { applyCameraFlags } from '../cli/camera-flags.ts';
 import { applyEnvironmentFlags } from '../cli/environment-flags.ts';
 import type { WavefrontCameraInput } from '../scene/types.ts';
@@ -75,12 +75,13 @@ export async function runFarmWorker(options: FarmWorkerOptions = {}): Promise<Fa
 
   const assetFor = async (render: FarmFrameData['render']): Promise<CachedAsset> => {
     const settings = rendererSettings(render);
-    const key = JSON.stringify([render.scenePath, render.camera, render.variant, render.animation, render.at, render.env, render.envIntensity, render.envRotationDegrees, render.negativeTexels, render.orbit, render.cameraPosition, render.cameraTarget, render.fovYDegrees, settings]);
+    const key = JSON.stringify([render.scenePath, render.camera, render.variant, render.animation, render.at, render.env, render.envIntensity, render.envRotationDegrees, render.negativeTexels, render.allowedOrigins, render.orbit, render.cameraPosition, render.cameraTarget, render.fovYDegrees, settings]);
     if (cached?.key === key) return cached;
     cached?.sequence.destroy();
     cached = null;
-    const gltf = await loadGltfForCommand(render.scenePath!, { camera: render.camera, variant: render.variant, animation: render.animation, at: render.at, aspectRatio: render.width / render.height, ...(options.log ? { stderr: options.log } : {}) });
-    const lighting = await applyEnvironmentFlags({}, render, (text) => log(`note: ${text}`));
+    const resourcePolicy = commandResourcePolicy(render);
+    const gltf = await loadGltfForCommand(render.scenePath!, { camera: render.camera, variant: render.variant, animation: render.animation, at: render.at, aspectRatio: render.width / render.height, resourcePolicy, ...(options.log ? { stderr: options.log } : {}) });
+    const lighting = await applyEnvironmentFlags({}, render, (text) => log(`note: ${text}`), resourcePolicy);
     const placed = render.orbit !== undefined || render.cameraPosition !== undefined ? applyCameraFlags({ ...gltf }, render).camera : undefined;
     summary.assetsLoaded += 1;
     log(`loaded ${render.scenePath}`);

@@ -78,8 +78,8 @@ export async function createWavefrontPathTracingComputeRenderer(options: Wavefro
   const specialization = options.shaderSpecialization ?? 'scene';
   if (specialization !== 'scene' && specialization !== 'off') throw new GpuRendererError('INVALID_OPTION', 'expected "scene" or "off"', { field: 'shaderSpecialization' });
   const acquired = await acquireGpuDevice({
-    ...(options.device ? { device: options.device } : {}),
-    ...(options.powerPreference ? { powerPreference: options.powerPreference } : {}),
+    ...(options.device !== undefined ? { device: options.device } : {}),
+    ...(options.powerPreference !== undefined ? { powerPreference: options.powerPreference } : {}),
   });
   try {
     resolveWavefrontDenoiser(config.output, acquired.device);
@@ -579,6 +579,8 @@ class WavefrontRenderer extends EventTarget implements WavefrontPathTracingRende
 
   updateCamera(camera: WavefrontCameraInput): void {
     this.assertUsable();
+    // A camera is required here (undefined would silently mean the default camera).
+    if (camera === undefined) throw new GpuRendererError('INVALID_OPTION', 'expected a camera object, got undefined', { field: 'camera' });
     this.config = { ...this.config, camera: normalizeWavefrontCamera(camera) };
     this.writeFrameUniforms();
     this.resetAccumulation();

@@ -27,6 +27,9 @@ import { chooseAnimation, needsRig, poseRig, poseTime, readRig, type GltfAnimati
 import { withMikkTSpaceTangents } from './tangents.ts';
 import { TextureTable } from './textures.ts';
 import { listVariants, selectVariant, variantMaterial } from './variants.ts';
+import { validateGltfLoadOptions } from './load-options.ts';
+import { acceptScene, type SceneOrigins } from './scene-acceptance.ts';
+import { resolveResourcePolicy, type ResourcePolicy } from '../resource-policy.ts';
 import type { VertexStreams } from './vertex-streams.ts';
 
 export interface GltfLoadOptions extends GltfPoseOptions {
@@ -46,6 +49,11 @@ export interface GltfLoadOptions extends GltfPoseOptions {
   signal?: AbortSignal;
   /** Decoder modules for KHR_draco_mesh_compression / EXT_meshopt_compression (loaded on demand in Node). */
   decoders?: GltfDecoderModules;
+  /**
+   * What the asset may read and how much it may decode (src/io/resource-policy.ts): by default
+   * references stay in the asset's folder, no other origin is fetched, 2 GiB are decoded at most.
+   */
+  resourcePolicy?: ResourcePolicy;
 }
 
 /**
@@ -207,16 +215,20 @@ interface LoadedAsset {
 
 interface CachedMesh {
   meshes: WavefrontMeshInput[];
+  /** JSON pointer of each mesh's primitive. */
+  origins: string[];
   bounds: { min: [number, number, number]; max: [number, number, number] }[];
   warnings: string[];
 }
 
 /** The body of `loadGltfScene` (load-gltf-scene.ts), loaded on its first call. */
-export async function readGltfScene(source: GltfSource, options: GltfLoadOptions = {}): Promise<GltfScene> {
+export async function readGltfScene(source: GltfSource, rawOptions: GltfLoadOptions = {}): Promise<GltfScene> {
+  const options = validateGltfLoadOptions(rawOptions);
   const { signal } = options;
   signal?.throwIfAborted();
+  const policy = await resolveResourcePolicy(options.resourcePolicy);
   const warnings: string[] = [];
-  const { document } = await readGltfDocument(source, warnings, { signal, decoders: options.decoders });
+  const { document } = await readGltfDocument(source, warnings, { signal, decoders: options.decoders, policy });
   signal?.throwIfAborted();
   const root = document.getRoot();
   const extensionsUsed = root.listExtensionsUsed().map((e) => e.extensionName);
@@ -231,7 +243,7 @@ export async function readGltfScene(source: GltfSource, options: GltfLoadOptions
   poseTime(options.time);
   const { roots } = pickScene(document, options.scene, warnings);
 
-  const table = new TextureTable(root.listTextures(), warnings);
+  const table = new TextureTable(root.listTextures(), warnings, policy);
   const materials: WavefrontMaterialInput[] = [];
   const gltfMaterials = root.listMaterials();
   for (let i = 0; i < gltfMaterials.length; i++) materials.push(await mapMaterial(gltfMaterials[i], pointer('materials', i), table));
@@ -267,6 +279,8 @@ async function poseAsset(asset: LoadedAsset, options: GltfLoadOptions): Promise<
   const time = pose?.time ?? poseTime(options.time);
   const flat = flattenNodes(asset.roots, nodeIndex, pose === null ? undefined : (index) => pose.world(index));
   const warnings = [...asset.warnings];
+  // Where each scene entry came from, for errors the renderer's validation raises (scene-acceptance.ts).
+  const origins: SceneOrigins = { meshes: [], materials: asset.document.getRoot().listMaterials().map((_, i) => pointer('materials', i)), instances: [], lights: [], images: [] };
 
   const meshes: WavefrontMeshInput[] = [];
   const meshIndexOf = new Map<WavefrontMeshInput, number>();
@@ -286,7 +300,10 @@ async function poseAsset(asset: LoadedAsset, options: GltfLoadOptions): Promise<
     }
     return cached.meshes.map((entry, k) => {
       let index = meshIndexOf.get(entry);
-      if (index === undefined) meshIndexOf.set(entry, (index = meshes.push(entry) - 1));
+      if (index === undefined) {
+        meshIndexOf.set(entry, (index = meshes.push(entry) - 1));
+        origins.meshes.push(cached.origins[k]!);
+      }
       return { index, ...cached.bounds[k]! };
     });
   };
@@ -320,6 +337,7 @@ async function poseAsset(asset: LoadedAsset, options: GltfLoadOptions): Promise<
         for (const entry of entries) {
           const id = `${name === '' ? `node ${index}` : name}${locals === undefined ? '' : `#${k}`}`;
           instances.push({ id, mesh: entry.index, transform });
+          origins.instances.push(at);
           for (let c = 0; c < 8; c++) {
             const corner = [c & 1 ? entry.max[0] : entry.min[0], c & 2 ? entry.max[1] : entry.min[1], c & 4 ? entry.max[2] : entry.min[2]];
             const p = transformPoint(transform, corner);
@@ -338,7 +356,10 @@ async function poseAsset(asset: LoadedAsset, options: GltfLoadOptions): Promise<
       cameras.push({ name: camera.getName() === '' ? fallback : camera.getName(), cameraIndex: ci, nodeIndex: index, nodeName: name, camera: cameraFromNode(camera, world) });
     }
     const light = node.getExtension<Light>('KHR_lights_punctual');
-    if (light !== null) lights.push(worldLight(light, world));
+    if (light !== null) {
+      lights.push(worldLight(light, world));
+      origins.lights.push(`${at}/extensions/KHR_lights_punctual`);
+    }
   }
   asset.meshCache = meshCache;
   const bounds: GltfBounds | undefined = instances.length === 0 ? undefined : { min: boundsMin, max: boundsMax };
@@ -346,6 +367,8 @@ async function poseAsset(asset: LoadedAsset, options: GltfLoadOptions): Promise<
   signal?.throwIfAborted();
 
   const scene = { meshes, instances, materials, textures: asset.table.textures, images: asset.table.images, camera, lights };
+  const chosen = cameras.find((c) => c.camera === camera);
+  acceptScene(scene, origins, [{ camera, at: chosen === undefined ? '' : pointer('nodes', chosen.nodeIndex) }]);
   const poseAgain = (next: GltfPoseAgainOptions = {}): Promise<GltfScene> => {
     const merged: GltfLoadOptions = { ...options };
     for (const [key, value] of Object.entries(next)) if (value !== undefined) (merged as Record<string, unknown>)[key] = value;
@@ -370,7 +393,7 @@ async function poseAsset(asset: LoadedAsset, options: GltfLoadOptions): Promise<
 
 /** A glTF mesh's primitives as renderer meshes (morphed with `weights`, skinned with `skin`), with local bounds. */
 async function primitiveMeshes(asset: LoadedAsset, mesh: Mesh, m: number, weights: readonly number[], skin: PrimitiveGeometryOptions['skin'], variant: Variant | undefined): Promise<CachedMesh> {
-  const out: CachedMesh = { meshes: [], bounds: [], warnings: [] };
+  const out: CachedMesh = { meshes: [], origins: [], bounds: [], warnings: [] };
   const primitives = mesh.listPrimitives();
   for (let p = 0; p < primitives.length; p++) {
     const at = pointer('meshes', m, 'primitives', p);
@@ -389,11 +412,16 @@ async function primitiveMeshes(asset: LoadedAsset, mesh: Mesh, m: number, weight
         out.warnings.push(`${at}: no TEXCOORD_${texCoord} for MikkTSpace tangents; the normal map cannot be applied`);
       } else {
         if (streams.normals === undefined) out.warnings.push(`${at}: flat normals computed for MikkTSpace tangents (the primitive has no NORMAL)`);
-        streams = await withMikkTSpaceTangents(streams, texCoord);
+        try {
+          streams = await withMikkTSpaceTangents(streams, texCoord);
+        } catch (error) {
+          failGltf(at, `MikkTSpace tangents could not be generated for the normal map (${(error as Error).message})`, error);
+        }
       }
     }
     const name = mesh.getName();
     out.meshes.push({ id: `${name === '' ? `mesh ${m}` : name}/${p}`, ...streams, material });
+    out.origins.push(at);
     out.bounds.push(localBounds(streams.positions));
   }
   return out;
