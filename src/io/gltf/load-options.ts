@@ -2,7 +2,7 @@
 import { fail, describe } from '../../errors/validate.ts';
 import type { GltfLoadOptions } from './gltf-scene-reader.ts';
 
-const KEYS = ['camera', 'aspectRatio', 'variant', 'scene', 'signal', 'decoders', 'resourcePolicy'];
+const KEYS = ['camera', 'aspectRatio', 'variant', 'scene', 'animation', 'time', 'signal', 'decoders', 'resourcePolicy'];
 
 export function validateGltfLoadOptions(options: unknown): GltfLoadOptions {
   if (options === undefined) return {};
@@ -16,6 +16,10 @@ export function validateGltfLoadOptions(options: unknown): GltfLoadOptions {
   if (o.aspectRatio !== undefined && !(typeof o.aspectRatio === 'number' && Number.isFinite(o.aspectRatio) && o.aspectRatio > 0)) {
     fail('INVALID_OPTION', 'aspectRatio', `expected a finite number > 0, got ${describe(o.aspectRatio)}`);
   }
+  if (o.animation !== undefined && o.animation !== null && typeof o.animation !== 'string' && !(typeof o.animation === 'number' && Number.isInteger(o.animation) && o.animation >= 0)) {
+    fail('INVALID_OPTION', 'animation', `expected an animation name, an index or null, got ${describe(o.animation)}`);
+  }
+  if (o.time !== undefined && !(typeof o.time === 'number' && Number.isFinite(o.time) && o.time >= 0)) fail('INVALID_OPTION', 'time', `expected a finite number of seconds >= 0, got ${describe(o.time)}`);
   if (o.variant !== undefined && typeof o.variant !== 'string') fail('INVALID_OPTION', 'variant', `expected a variant name, got ${describe(o.variant)}`);
   if (o.signal !== undefined && (typeof o.signal !== 'object' || o.signal === null || typeof (o.signal as AbortSignal).throwIfAborted !== 'function')) {
     fail('INVALID_OPTION', 'signal', `expected an AbortSignal, got ${describe(o.signal)}`);

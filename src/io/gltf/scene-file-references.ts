@@ -13,7 +13,9 @@
  *
  * `gltf` is one reference or an array; a reference is a string (`"model.glb"`) or an object with
  * `src` (resolved against the scene file's location), and optional `camera` (index or name),
- * `variant`, `scene` (index or name) and `transform` (column-major 4x4 placing the whole asset).
+ * `variant`, `scene` (index or name), `animation` (index or name, null for none) with `time`
+ * (seconds: the pose, as `loadGltfScene` takes them) and `transform` (column-major 4x4 placing the
+ * whole asset).
  * The assets are merged after the file's own content: their meshes, materials, textures and images
  * are appended with indices offset, their instances and lights placed by `transform`. The file's
  * `camera` wins; otherwise the first reference's camera is used (its chosen or default camera).
@@ -34,6 +36,8 @@ export interface GltfSceneReference {
   camera?: number | string;
   variant?: string;
   scene?: number | string;
+  animation?: number | string | null;
+  time?: number;
   /** Column-major 4x4 applied to the whole asset; default identity. */
   transform?: number[];
 }
@@ -50,7 +54,7 @@ export function parseGltfReferences(value: unknown, field = 'gltf'): GltfSceneRe
     if (typeof entry === 'string') return { src: entry };
     if (typeof entry !== 'object' || entry === null || Array.isArray(entry)) invalid(at, `expected a file name or { src, ... }, got ${describe(entry)}`);
     const object = entry as Record<string, unknown>;
-    const allowed = ['src', 'camera', 'variant', 'scene', 'transform'];
+    const allowed = ['src', 'camera', 'variant', 'scene', 'animation', 'time', 'transform'];
     for (const key of Object.keys(object)) if (!allowed.includes(key)) invalid(`${at}.${key}`, `unknown key ${JSON.stringify(key)} (expected one of ${allowed.join(', ')})`);
     if (typeof object.src !== 'string' || object.src === '') invalid(`${at}.src`, `expected a file name, got ${describe(object.src)}`);
     const ref: GltfSceneReference = { src: object.src };
@@ -59,6 +63,15 @@ export function parseGltfReferences(value: unknown, field = 'gltf'): GltfSceneRe
       if (v === undefined) continue;
       if (typeof v !== 'string' && !(typeof v === 'number' && Number.isInteger(v) && v >= 0)) invalid(`${at}.${key}`, `expected a name or an index, got ${describe(v)}`);
       ref[key] = v;
+    }
+    if (object.animation !== undefined) {
+      const v = object.animation;
+      if (v !== null && typeof v !== 'string' && !(typeof v === 'number' && Number.isInteger(v) && v >= 0)) invalid(`${at}.animation`, `expected a name, an index or null, got ${describe(v)}`);
+      ref.animation = v;
+    }
+    if (object.time !== undefined) {
+      if (typeof object.time !== 'number' || !Number.isFinite(object.time) || object.time < 0) invalid(`${at}.time`, `expected seconds >= 0, got ${describe(object.time)}`);
+      ref.time = object.time;
     }
     if (object.variant !== undefined) {
       if (typeof object.variant !== 'string') invalid(`${at}.variant`, `expected a variant name, got ${describe(object.variant)}`);
@@ -128,6 +141,8 @@ export async function resolveGltfReferences(
         ...(ref.camera !== undefined ? { camera: ref.camera } : {}),
         ...(ref.variant !== undefined ? { variant: ref.variant } : {}),
         ...(ref.scene !== undefined ? { scene: ref.scene } : {}),
+        ...(ref.animation !== undefined ? { animation: ref.animation } : {}),
+        ...(ref.time !== undefined ? { time: ref.time } : {}),
         ...(options.signal !== undefined ? { signal: options.signal } : {}),
         resourcePolicy: assetPolicy,
       });
