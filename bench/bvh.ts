@@ -13,6 +13,12 @@
  * - three-mesh-bvh: targetLeafSize 4, maxDepth 48, indirect: true (it permutes an index array, like
  *   our triangleOrder, instead of rewriting the geometry), verbose: false. Its SAH uses 8 bins (or
  *   every centroid in small nodes) and C_isect = 1.25; CENTER splits the longest axis at its middle.
+ * - ours, GPU LBVH: `GpuBvhBuilder` (src/accel/gpu-build/) on the WebGPU adapter of this process
+ *   (Dawn: lavapipe here, a real GPU elsewhere), 30-bit Morton keys, SAH leaf collapse up to 8. Its
+ *   input is the primitive records already on the device (the renderer uploads them anyway), so the
+ *   upload is not timed; wall time runs from submission until the tree's figures are read back, GPU
+ *   time is the timestamp-query span of the build's compute pass where the adapter has timestamps.
+ *   One untimed build per mesh first (scratch allocation).
  * The machine is shared and noisy, so the builders take turns run by run (one run of each, then the
  * next round) and every run's time is kept. Times are wall clock around the whole call (ours
  * includes the final SAH evaluation, ~1% of it). The worker pool is started by an untimed warm-up;
@@ -20,6 +26,11 @@
  */
 import { buildBvh, buildBvhParallel } from '../src/accel/bvh-builder.ts';
 import { computeThreeMeshBvhSahCost } from '../src/accel/bvh-sah.ts';
+import { GpuBvhBuilder } from '../src/accel/gpu-build/gpu-bvh-builder.ts';
+import { packWavefrontTriangles } from '../src/accel/triangle-packing.ts';
+import { acquireGpuDevice } from '../src/gpu/acquire-device.ts';
+import { BufferUsage } from '../src/gpu/webgpu-constants.ts';
+import { bvhNodeLayout, primitiveLayout } from '../src/gpu-layout/records.ts';
 
 export interface BvhBenchRow {
   mesh: string;
@@ -32,6 +43,8 @@ export interface BvhBenchRow {
   buildMsAll: number[];
   sahCost: number;
   nodeCount: number;
+  /** GPU builders: GPU time of the build pass (timestamp queries), median over the runs; null without timestamps. */
+  gpuMsMedian?: number | null;
 }
 
 export interface BvhBenchRatio {
@@ -56,7 +69,37 @@ export interface BvhBenchResult {
   settings: Record<string, unknown>;
   rows: BvhBenchRow[];
   ratios: BvhBenchRatio[];
+  /** The WebGPU adapter the GPU builder ran on; null when none was available (no GPU rows). */
+  gpuAdapter: string | null;
+  /** GPU LBVH against our CPU binned SAH (1 thread) per mesh: SAH ratio (> 1: costlier to trace) and time ratio. */
+  gpuVersusCpu: { mesh: string; sahCostRatio: number; buildTimeRatio: number; gpuMs: number | null }[];
   totalMs: number;
+}
+
+/** The GPU builder over one mesh: the records uploaded once, a builder with its scratch kept between runs. */
+async function gpuBuilder(device: GPUDevice, positions: Float32Array): Promise<{ run: () => Promise<{ sahCost: number; nodeCount: number; gpuMs: number | null }>; destroy: () => void }> {
+  const n = positions.length / 9;
+  const records = packWavefrontTriangles(positions, Uint32Array.from({ length: n }, (_, i) => i));
+  const usage = BufferUsage.STORAGE | BufferUsage.COPY_DST;
+  const buffers = {
+    source: device.createBuffer({ size: records.byteLength, usage }),
+    primitives: device.createBuffer({ size: n * primitiveLayout.size, usage }),
+    nodes: device.createBuffer({ size: (2 * n - 1) * bvhNodeLayout.size, usage }),
+    parents: device.createBuffer({ size: (2 * n - 1) * 4, usage }),
+  };
+  device.queue.writeBuffer(buffers.source, 0, records);
+  const builder = await GpuBvhBuilder.create(device, { ...buffers, primitiveCount: n });
+  await builder.build();
+  return {
+    run: async () => {
+      const r = await builder.build();
+      return { sahCost: r.sahCost, nodeCount: r.nodeCount, gpuMs: r.gpuTimeMs };
+    },
+    destroy: () => {
+      builder.destroy();
+      for (const b of Object.values(buffers)) b.destroy();
+    },
+  };
 }
 
 /** mulberry32 */
@@ -145,6 +188,15 @@ export async function runBvhBenchmark(options: { sizes?: number[]; runs?: number
   const workers = Number.isInteger(envWorkers) && envWorkers > 0 ? envWorkers : Math.max(1, Math.min(8, navigator.hardwareConcurrency || 2));
   const loadBefore = loadavg()[0]!;
 
+  let gpu: { device: GPUDevice; adapter: string } | null = null;
+  try {
+    const acquired = await acquireGpuDevice();
+    gpu = { device: acquired.device, adapter: acquired.adapterDescription };
+  } catch (error) {
+    log(`  no WebGPU adapter (${(error as Error).message}): GPU builder skipped`);
+  }
+  const gpuVersusCpu: BvhBenchResult['gpuVersusCpu'] = [];
+
   const sizes = options.sizes ?? [100_000, 1_000_000];
   const rows: BvhBenchRow[] = [];
   const ratios: BvhBenchRatio[] = [];
@@ -156,6 +208,8 @@ export async function runBvhBenchmark(options: { sizes?: number[]; runs?: number
     const geometry = new THREE.BufferGeometry();
     geometry.setAttribute('position', new THREE.BufferAttribute(positions, 3));
 
+    const onGpu = gpu ? await gpuBuilder(gpu.device, positions) : null;
+    const gpuMs: number[] = [];
     const builders: Builder[] = [
       ['ours, 1 thread', async () => {
         const r = buildBvh(positions, { maxLeafSize: 4, binCount: 16 });
@@ -172,6 +226,13 @@ export async function runBvhBenchmark(options: { sizes?: number[]; runs?: number
           return { sahCost: computeThreeMeshBvhSahCost(root), nodeCount: root.byteLength / 32 };
         }],
       ),
+      ...(onGpu
+        ? [['ours, GPU LBVH', async () => {
+          const r = await onGpu.run();
+          if (r.gpuMs !== null) gpuMs.push(r.gpuMs);
+          return r;
+        }] as Builder]
+        : []),
     ];
     if (Number.isNaN(parallelColdStartMs)) {
       const t0 = performance.now();
@@ -181,6 +242,7 @@ export async function runBvhBenchmark(options: { sizes?: number[]; runs?: number
     }
     // One untimed warm-up per builder (JIT), on the first mesh only.
     if (triangles === sizes[0]) for (const [, build] of builders) await build();
+    gpuMs.length = 0;
     const times = builders.map(() => [] as number[]);
     const last = builders.map(() => ({ sahCost: 0, nodeCount: 0 }));
     for (let k = 0; k < runs; k++) {
@@ -196,17 +258,27 @@ export async function runBvhBenchmark(options: { sizes?: number[]; runs?: number
         mesh, triangles, builder, runs,
         buildMsMedian: median(all), buildMsMin: Math.min(...all), buildMsMax: Math.max(...all), buildMsAll: all,
         sahCost: last[b]!.sahCost, nodeCount: last[b]!.nodeCount,
+        ...(builder.includes('GPU') ? { gpuMsMedian: gpuMs.length > 0 ? median(gpuMs) : null } : {}),
       };
       rows.push(row);
-      log(`  ${mesh}: ${builder.padEnd(22)} ${row.buildMsMedian.toFixed(0).padStart(6)} ms median of ${runs} (${row.buildMsMin.toFixed(0)}-${row.buildMsMax.toFixed(0)})  SAH ${row.sahCost.toFixed(2)}  nodes ${row.nodeCount}`);
+      const gpuTime = row.gpuMsMedian != null ? `  GPU ${row.gpuMsMedian.toFixed(1)} ms` : '';
+      log(`  ${mesh}: ${builder.padEnd(22)} ${row.buildMsMedian.toFixed(0).padStart(6)} ms median of ${runs} (${row.buildMsMin.toFixed(0)}-${row.buildMsMax.toFixed(0)})  SAH ${row.sahCost.toFixed(2)}  nodes ${row.nodeCount}${gpuTime}`);
     });
     geometry.dispose();
+    onGpu?.destroy();
+    const gpuRow = rows.find((r) => r.mesh === mesh && r.builder === 'ours, GPU LBVH');
+    const cpuRow = rows.find((r) => r.mesh === mesh && r.builder === 'ours, 1 thread')!;
+    if (gpuRow) {
+      gpuVersusCpu.push({ mesh, sahCostRatio: gpuRow.sahCost / cpuRow.sahCost, buildTimeRatio: gpuRow.buildMsMedian / cpuRow.buildMsMedian, gpuMs: gpuRow.gpuMsMedian ?? null });
+      log(`  ${mesh}: GPU LBVH / CPU binned SAH: SAH x${(gpuRow.sahCost / cpuRow.sahCost).toFixed(3)}, build time x${(gpuRow.buildMsMedian / cpuRow.buildMsMedian).toFixed(2)} (${gpu!.adapter})`);
+    }
     for (const ours of rows.filter((r) => r.mesh === mesh && r.builder.startsWith('ours'))) {
       for (const theirs of rows.filter((r) => r.mesh === mesh && !r.builder.startsWith('ours'))) {
         ratios.push({ mesh, ours: ours.builder, versus: theirs.builder, buildTimeRatio: ours.buildMsMedian / theirs.buildMsMedian, sahCostRatio: ours.sahCost / theirs.sahCost });
       }
     }
   }
+  gpu?.device.destroy();
   return {
     name: 'bvh',
     node: process.version,
@@ -218,10 +290,13 @@ export async function runBvhBenchmark(options: { sizes?: number[]; runs?: number
       costModel: 'C_trav = 1, C_isect = 1, surface areas relative to the root',
       ours: { maxLeafSize: 4, leafSizeCap: 16, binCount: 16, maxDepth: 48, workers, wasm: true },
       threeMeshBvh: { targetLeafSize: 4, maxDepth: 48, indirect: true },
+      gpuLbvh: { mortonBits: 30, maxLeafSize: 8, adapter: gpu?.adapter ?? null, timing: 'records on the device; wall = submit to figures read back; GPU = timestamp span of the build pass' },
       timing: 'wall clock per build, builders interleaved run by run; median (min-max) of 7 runs (100k, after one warm-up) or 5 runs (1M)',
     },
     rows,
     ratios,
+    gpuAdapter: gpu?.adapter ?? null,
+    gpuVersusCpu,
     totalMs: performance.now() - began,
   };
 }

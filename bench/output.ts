@@ -9,16 +9,23 @@
  *    Cornell box, rendered with adaptive sampling until they converge or reach the ceiling, and
  *    uniformly for the same renderFrame time; RMSE, relative MSE and display PSNR against a
  *    converged uniform render.
- * 2. Denoising at 4, 16 and 64 spp on the Cornell box and a glTF scene (textured floor, boxes, an
- *    emissive panel; generated here with glTF-Transform): PSNR (display: tone mapped sRGB 8-bit;
- *    and linear, peak 1), SSIM (display) and relative MSE of the raw and the denoised image against
- *    a converged render, and the time the denoiser takes.
+ * 2. Denoising at 4, 16 and 64 spp on the Cornell box (96x96) and a glTF scene (128x96: textured
+ *    floor, boxes, an emissive panel; generated here with glTF-Transform), raw, the a-trous preview
+ *    and OIDN: PSNR (display: tone mapped sRGB 8-bit; and linear, peak 1), SSIM (display) and
+ *    relative MSE against a converged render, the shift of the image's mean luminance (against the
+ *    raw image and the reference), and the time each denoiser takes. The two denoisers run in two
+ *    renderers with the same seed, so they filter the very same raw image.
  *
- * BENCH_OUTPUT_REFERENCE_SPP (default 1024) sets the references' samples per pixel.
+ * BENCH_OUTPUT_REFERENCE_SPP (default 1024) sets the references' samples per pixel; references are
+ * cached in bench/results/references, keyed by the scene, the samples and the renderer's source;
+ * BENCH_OUTPUT_ADAPTIVE=0 skips part 1.
  */
-import { mkdtemp, mkdir, rm, writeFile } from 'node:fs/promises';
+import { spawnSync } from 'node:child_process';
+import { createHash } from 'node:crypto';
+import { existsSync } from 'node:fs';
+import { mkdtemp, mkdir, readFile, rm, writeFile } from 'node:fs/promises';
 import { tmpdir } from 'node:os';
-import { join } from 'node:path';
+import { dirname, join } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { Document, NodeIO } from '@gltf-transform/core';
 import { ALL_EXTENSIONS, KHRMaterialsEmissiveStrength } from '@gltf-transform/extensions';
@@ -113,13 +120,40 @@ async function renderer(scene: Scene, options: Partial<WavefrontPathTracingOptio
   return createWavefrontPathTracingComputeRenderer({ ...scene, ...options } as WavefrontPathTracingOptions);
 }
 
-/** A converged render (another seed than the measured ones). */
+/**
+ * The cache key of a reference: the scene, the samples, and the renderer's source as it is now
+ * (the committed tree of src/ plus any uncommitted change to it), so a changed renderer renders
+ * new references.
+ */
+function referenceKey(scene: Scene): string {
+  const git = (args: string[]) => {
+    const r = spawnSync('git', args, { cwd: fileURLToPath(new URL('..', import.meta.url)), encoding: 'utf8', maxBuffer: 1 << 28 });
+    return r.status === 0 ? r.stdout : `unavailable ${Math.random()}`;
+  };
+  const hash = createHash('sha256');
+  hash.update(JSON.stringify(scene, (_, v: unknown) => (ArrayBuffer.isView(v) ? Array.from(v as unknown as ArrayLike<number>) : v)));
+  hash.update(`${referenceSpp} ${git(['rev-parse', 'HEAD:src'])} ${git(['diff', 'HEAD', '--', 'src'])}`);
+  return hash.digest('hex').slice(0, 16);
+}
+
+/**
+ * A converged render (another seed than the measured ones), cached in bench/results/references
+ * (git-ignored) under referenceKey.
+ */
 async function reference(scene: Scene): Promise<{ image: Image; seconds: number }> {
+  const path = fileURLToPath(new URL(`./results/references/${scene.width}x${scene.height}-${referenceSpp}spp-${referenceKey(scene)}.f32`, import.meta.url));
+  if (existsSync(path)) {
+    const bytes = await readFile(path);
+    return { image: { width: scene.width, height: scene.height, data: new Float32Array(bytes.buffer.slice(bytes.byteOffset, bytes.byteOffset + bytes.byteLength)) }, seconds: 0 };
+  }
   const r = await renderer(scene, { seed: 1000, tileSize: 256 });
   try {
     const t0 = performance.now();
     for (let done = 0; done < referenceSpp; done += 64) await r.renderFrame({ samplesPerPixel: Math.min(64, referenceSpp - done) });
-    return { image: await r.readRadiance(), seconds: (performance.now() - t0) / 1000 };
+    const image = await r.readRadiance();
+    await mkdir(dirname(path), { recursive: true });
+    await writeFile(path, image.data);
+    return { image, seconds: (performance.now() - t0) / 1000 };
   } finally {
     r.destroy();
   }
@@ -188,44 +222,100 @@ async function equalTime(name: string, scene: Scene, ref: { image: Image }, thre
   }
 }
 
+/** The denoisers compared: a-trous, OIDN (default: exact emitters) and, on scenes that show emitters, OIDN denoising them too. */
+type Variant = 'atrous' | 'oidn' | 'oidnNetwork';
+type Denoised = 'raw' | Variant;
+const variantOptions: Record<Variant, WavefrontPathTracingOptions['denoise']> = {
+  atrous: 'atrous',
+  oidn: 'oidn',
+  oidnNetwork: { denoiser: 'oidn', emission: 'network' },
+};
+const variantLabels: Record<Denoised, string> = { raw: 'raw', atrous: 'a-trous', oidn: 'OIDN', oidnNetwork: "OIDN emission: 'network'" };
+
 export interface DenoiseRow {
   scene: string;
+  size: string;
   spp: number;
-  displayPsnr: { raw: number; denoised: number };
-  linearPsnr: { raw: number; denoised: number };
-  ssim: { raw: number; denoised: number };
-  relativeMse: { raw: number; denoised: number };
-  denoiseMs: number;
+  variants: Variant[];
+  displayPsnr: Partial<Record<Denoised, number>>;
+  linearPsnr: Partial<Record<Denoised, number>>;
+  ssim: Partial<Record<Denoised, number>>;
+  relativeMse: Partial<Record<Denoised, number>>;
+  /** Mean luminance against the raw image's, in percent (what the denoiser itself moved). */
+  meanShift: Partial<Record<Variant, number>>;
+  /** Mean luminance against the reference's, in percent. */
+  meanVsReference: Partial<Record<Denoised, number>>;
+  /** readDenoised() minus a readback, ms. */
+  denoiseMs: Partial<Record<Variant, number>>;
+  /** The precision OIDN ran in (the renderer's 'auto': f16 where the device has shader-f16). */
+  oidnPrecision: string;
 }
 
-async function denoiseRows(name: string, scene: Scene, ref: Image): Promise<DenoiseRow[]> {
-  const r = await renderer(scene, { seed: 5, denoise: true });
+const meanLuminance = (image: Image): number => {
+  let s = 0;
+  for (let i = 0; i < image.data.length; i += 4) s += 0.2126 * image.data[i]! + 0.7152 * image.data[i + 1]! + 0.0722 * image.data[i + 2]!;
+  return s / (image.data.length / 4);
+};
+
+/** The rows of one scene; every variant renders with the same seed, so all filter the same raw image. */
+async function denoiseRows(name: string, scene: Scene, ref: Image, variants: Variant[]): Promise<DenoiseRow[]> {
+  const renderers = {} as Record<Variant, WavefrontPathTracingRenderer>;
+  for (const v of variants) renderers[v] = await renderer(scene, { seed: 5, denoise: variantOptions[v] });
   const rows: DenoiseRow[] = [];
   try {
     let spp = 0;
     for (const target of [4, 16, 64]) {
-      await r.renderFrame({ samplesPerPixel: target - spp });
+      for (const v of variants) await renderers[v].renderFrame({ samplesPerPixel: target - spp });
       spp = target;
-      const raw = await r.readRadiance();
-      const t0 = performance.now();
-      const denoised = await r.readDenoised();
-      const withDenoise = performance.now() - t0;
-      const t1 = performance.now();
-      await r.readDenoised(); // current now: a readback alone
-      const readOnly = performance.now() - t1;
+      const images: Partial<Record<Denoised, Image>> = { raw: await renderers[variants[0]!].readRadiance() };
+      const denoiseMs: Partial<Record<Variant, number>> = {};
+      for (const v of variants) {
+        const t0 = performance.now();
+        images[v] = await renderers[v].readDenoised();
+        const withDenoise = performance.now() - t0;
+        const t1 = performance.now();
+        await renderers[v].readDenoised(); // current now: a readback alone
+        denoiseMs[v] = Math.max(0, withDenoise - (performance.now() - t1));
+      }
+      const per = (f: (image: Image) => number): Partial<Record<Denoised, number>> => Object.fromEntries(Object.entries(images).map(([k, image]) => [k, f(image)]));
+      const shift = (a: number, b: number) => 100 * (a / b - 1);
+      const rawMean = meanLuminance(images.raw!);
       rows.push({
         scene: name,
+        size: `${scene.width}x${scene.height}`,
         spp,
-        displayPsnr: { raw: displayPeakSignalToNoiseRatio(raw, ref), denoised: displayPeakSignalToNoiseRatio(denoised, ref) },
-        linearPsnr: { raw: peakSignalToNoiseRatio(raw, ref, { peak: 1 }), denoised: peakSignalToNoiseRatio(denoised, ref, { peak: 1 }) },
-        ssim: { raw: displayStructuralSimilarity(raw, ref), denoised: displayStructuralSimilarity(denoised, ref) },
-        relativeMse: { raw: relativeMeanSquaredError(raw, ref), denoised: relativeMeanSquaredError(denoised, ref) },
-        denoiseMs: Math.max(0, withDenoise - readOnly),
+        variants,
+        displayPsnr: per((i) => displayPeakSignalToNoiseRatio(i, ref)),
+        linearPsnr: per((i) => peakSignalToNoiseRatio(i, ref, { peak: 1 })),
+        ssim: per((i) => displayStructuralSimilarity(i, ref)),
+        relativeMse: per((i) => relativeMeanSquaredError(i, ref)),
+        meanShift: Object.fromEntries(variants.map((v) => [v, shift(meanLuminance(images[v]!), rawMean)])),
+        meanVsReference: per((i) => shift(meanLuminance(i), meanLuminance(ref))),
+        denoiseMs,
+        oidnPrecision: renderers.oidn?.getSnapshot().denoise!.precision ?? 'n/a',
       });
     }
     return rows;
   } finally {
-    r.destroy();
+    for (const r of Object.values(renderers)) r.destroy();
+  }
+}
+
+/** Prints the denoise rows and the goals (OIDN >= 3 dB over a-trous at 4 spp, |mean shift| <= 0.5%). */
+export function printDenoiseRows(rows: readonly DenoiseRow[]): void {
+  const f = (v: number | undefined, d = 2) => (v === undefined ? '-' : v.toFixed(d));
+  for (const r of rows) {
+    const columns: Denoised[] = ['raw', ...r.variants];
+    console.log(`  ${r.scene} ${r.size}, ${r.spp} spp (${columns.map((c) => variantLabels[c]).join(' / ')}):`);
+    console.log(`    display PSNR ${columns.map((c) => f(r.displayPsnr[c])).join(' / ')} dB; linear PSNR ${columns.map((c) => f(r.linearPsnr[c])).join(' / ')} dB; SSIM ${columns.map((c) => f(r.ssim[c], 3)).join(' / ')}`);
+    console.log(`    relMSE ${columns.map((c) => r.relativeMse[c]!.toExponential(2)).join(' / ')}; mean vs raw ${r.variants.map((v) => `${f(r.meanShift[v])}%`).join(' / ')}; mean vs reference ${columns.map((c) => `${f(r.meanVsReference[c])}%`).join(' / ')}`);
+    console.log(`    denoise ${r.variants.map((v) => `${f(r.denoiseMs[v], 0)} ms`).join(' / ')} (OIDN in ${r.oidnPrecision})`);
+  }
+  for (const r of rows.filter((row) => row.spp === 4)) {
+    for (const v of r.variants.filter((x) => x !== 'atrous')) {
+      const gain = r.displayPsnr[v]! - r.displayPsnr.atrous!;
+      console.log(`  goal ${r.scene} 4 spp, ${variantLabels[v]}: ${f(gain)} dB over a-trous (>= 3: ${gain >= 3 ? 'met' : 'NOT met'}), mean shift ${f(r.meanShift[v])}% (within 0.5%: ${Math.abs(r.meanShift[v]!) <= 0.5 ? 'met' : 'NOT met'})`);
+    }
   }
 }
 
@@ -239,14 +329,15 @@ export async function runOutputBenchmark(): Promise<{ adaptive: AdaptiveRow[]; d
     const cornell: Scene = { ...createCornellBoxScene(), width: 96, height: 96, maxDepth: 6 };
     const adaptive: AdaptiveRow[] = [];
     const references = new Map<string, { image: Image }>();
-    for (const [name, scene] of [['uneven scene', unevenScene()], ['Cornell box', cornell]] as const) {
+    const adaptiveOn = !['0', 'false', 'no', 'off'].includes((process.env.BENCH_OUTPUT_ADAPTIVE ?? '').toLowerCase());
+    for (const [name, scene] of adaptiveOn ? ([['uneven scene', unevenScene()], ['Cornell box', cornell]] as const) : []) {
       const ref = await reference(scene);
       references.set(name, ref);
-      console.log(`  ${name} reference: ${ref.seconds.toFixed(1)} s`);
+      console.log(`  ${name} reference: ${ref.seconds > 0 ? `${ref.seconds.toFixed(1)} s` : 'cached'}`);
       for (const threshold of [0.05, 0.02]) adaptive.push(await equalTime(name, scene, ref, threshold, 256));
     }
     const e = (v: number) => v.toExponential(2);
-    console.table(adaptive.map((r) => ({
+    if (adaptive.length > 0) console.table(adaptive.map((r) => ({
       scene: r.scene, threshold: r.threshold, 'time (s)': r.seconds.toFixed(2), 'adaptive spp mean / max': `${r.adaptiveMeanSpp.toFixed(1)} / ${r.adaptiveMaxSpp}`, converged: `${(100 * r.convergedShare).toFixed(0)}%`,
       'uniform spp': r.uniformSpp, 'RMSE adaptive / uniform': `${e(r.adaptiveRmse)} / ${e(r.uniformRmse)}`,
       'relMSE adaptive / uniform': `${e(r.adaptiveRelativeMse)} / ${e(r.uniformRelativeMse)}`,
@@ -258,17 +349,13 @@ export async function runOutputBenchmark(): Promise<{ adaptive: AdaptiveRow[]; d
       let ref = references.get(name);
       if (!ref) {
         const made = await reference(scene);
-        console.log(`  ${name} reference: ${made.seconds.toFixed(1)} s`);
+        console.log(`  ${name} reference: ${made.seconds > 0 ? `${made.seconds.toFixed(1)} s` : 'cached'}`);
         ref = made;
       }
-      denoise.push(...(await denoiseRows(name, scene, ref.image)));
+      // The glTF scene shows no emitter, so OIDN's two emission modes give the same image there.
+      denoise.push(...(await denoiseRows(name, scene, ref.image, name === 'Cornell box' ? ['atrous', 'oidn', 'oidnNetwork'] : ['atrous', 'oidn'])));
     }
-    const f = (v: number, d = 2) => v.toFixed(d);
-    console.table(denoise.map((r) => ({
-      scene: r.scene, spp: r.spp, 'PSNR display raw → denoised (dB)': `${f(r.displayPsnr.raw)} → ${f(r.displayPsnr.denoised)}`,
-      'PSNR linear raw → denoised (dB)': `${f(r.linearPsnr.raw)} → ${f(r.linearPsnr.denoised)}`, 'SSIM raw → denoised': `${f(r.ssim.raw, 3)} → ${f(r.ssim.denoised, 3)}`,
-      'relMSE raw → denoised': `${r.relativeMse.raw.toExponential(2)} → ${r.relativeMse.denoised.toExponential(2)}`, 'denoise (ms)': f(r.denoiseMs, 1),
-    })));
+    printDenoiseRows(denoise);
     return { adaptive, denoise, referenceSpp, adapter };
   } finally {
     await rm(dir, { recursive: true, force: true });

@@ -63,7 +63,7 @@ if (options.bvh) {
   console.table(
     bvh.rows.map((r) => ({
       mesh: r.mesh, builder: r.builder, 'build ms (median)': Math.round(r.buildMsMedian), 'min-max': `${Math.round(r.buildMsMin)}-${Math.round(r.buildMsMax)}`,
-      runs: r.runs, 'SAH cost': Number(r.sahCost.toFixed(2)), nodes: r.nodeCount,
+      runs: r.runs, 'SAH cost': Number(r.sahCost.toFixed(2)), nodes: r.nodeCount, 'GPU ms': r.gpuMsMedian == null ? '' : Number(r.gpuMsMedian.toFixed(2)),
     })),
   );
   console.table(
@@ -73,6 +73,18 @@ if (options.bvh) {
     })),
   );
   console.log(`load average (1 min) before ${bvh.loadAverage.before.toFixed(2)}, after ${bvh.loadAverage.after.toFixed(2)}; parallel cold start ${bvh.parallelColdStartMs.toFixed(0)} ms`);
+  if (bvh.gpuAdapter) {
+    console.log(`GPU LBVH on ${bvh.gpuAdapter}:`);
+    console.table(bvh.gpuVersusCpu.map((g) => ({ mesh: g.mesh, 'SAH GPU/CPU': Number(g.sahCostRatio.toFixed(3)), 'time GPU/CPU (1 thread)': Number(g.buildTimeRatio.toFixed(3)), 'GPU ms': g.gpuMs === null ? '' : Number(g.gpuMs.toFixed(2)) })));
+    // The goal of issue 16: 1M triangles in <= 10 ms on an NVIDIA GPU; only a real NVIDIA adapter can say.
+    const million = bvh.gpuVersusCpu.find((g) => g.mesh.endsWith(' 1M'));
+    const nvidia = /nvidia/i.test(bvh.gpuAdapter);
+    console.log(
+      million && nvidia
+        ? `goal 1M triangles <= 10 ms (NVIDIA): ${million.gpuMs === null ? 'no timestamps' : `${million.gpuMs.toFixed(2)} ms GPU time, ${million.gpuMs <= 10 ? 'met' : 'not met'}`}`
+        : 'goal 1M triangles <= 10 ms on an NVIDIA GPU: not measured on this adapter',
+    );
+  }
 } else {
   console.log('BVH build benchmark skipped (--no-bvh / BENCH_BVH=0)');
 }

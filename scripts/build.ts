@@ -3,7 +3,7 @@
 // export condition: see scripts/browser-build). Run through `npm run build` (which regenerates the
 // embedded WGSL first).
 import { spawnSync } from 'node:child_process';
-import { chmodSync, existsSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
+import { chmodSync, existsSync, mkdirSync, readdirSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { buildBrowserDist } from './browser-build/index.ts';
@@ -26,8 +26,13 @@ rmSync(dist, { recursive: true, force: true });
 compile('tsconfig.build.json');
 compile('tsconfig.cjs.json');
 
-// The root package.json says "type": "module"; this marks dist/cjs/**/*.js as CommonJS.
-writeFileSync(join(dist, 'cjs/package.json'), `${JSON.stringify({ type: 'commonjs' }, null, 2)}\n`);
+// The root package.json says "type": "module"; this marks dist/cjs/**/*.js as CommonJS. It is also
+// the package scope of those files, so it maps the OIDN weights' subpath imports itself, to shims
+// that require the package's one copy (weights/oidn: ES modules, which require() loads).
+const weightModules = readdirSync(join(root, 'weights/oidn')).filter((f) => f.endsWith('.js'));
+writeFileSync(join(dist, 'cjs/package.json'), `${JSON.stringify({ type: 'commonjs', imports: { '#oidn-weights/*': './oidn-weights/*' } }, null, 2)}\n`);
+mkdirSync(join(dist, 'cjs/oidn-weights'), { recursive: true });
+for (const file of weightModules) writeFileSync(join(dist, 'cjs/oidn-weights', file), `module.exports = require('../../../weights/oidn/${file}');\n`);
 
 // The package "bin": an ES module with a shebang, executable.
 const cli = join(dist, 'esm/cli/main.js');

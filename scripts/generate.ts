@@ -7,13 +7,17 @@ import { existsSync, readFileSync, writeFileSync } from 'node:fs';
 import { fileURLToPath } from 'node:url';
 import { pathTracerBindings, type BindingSpec } from '../src/gpu-layout/bindings.ts';
 import { displayBindings } from '../src/shaders/display-bindings.ts';
+import { bvhBuildBindings } from '../src/accel/gpu-build/bindings.ts';
+import { oidnBindings } from '../src/post/denoise/oidn/bindings.ts';
 import { programSpecs } from '../src/shaders/programs.ts';
 import { reflectProgram } from './shader-build/reflect.ts';
 import { compactWgsl } from './shader-build/compact-wgsl.ts';
 import { linkProgram, weslProjectSources } from './shader-build/wesl-project.ts';
 import { generateRasterPrograms } from './shader-build/raster-programs.ts';
+import { embedCodecs } from './codec-build/embed-codecs.ts';
+import { generateOidnWeightModules } from './oidn-weights.ts';
 
-const tables: Record<string, Record<string, BindingSpec>> = { pathTracer: pathTracerBindings, display: displayBindings };
+const tables: Record<string, Record<string, BindingSpec>> = { pathTracer: pathTracerBindings, display: displayBindings, bvhBuild: bvhBuildBindings, oidn: oidnBindings };
 const out = fileURLToPath(new URL('../src/shaders/programs.generated.ts', import.meta.url));
 
 const sources = weslProjectSources();
@@ -21,7 +25,7 @@ const entries: string[] = [];
 for (const [name, spec] of Object.entries(programSpecs)) {
   let wgsl: string;
   try {
-    wgsl = compactWgsl((await linkProgram(spec.module, {}, sources)).dest);
+    wgsl = compactWgsl((await linkProgram(spec.module, {}, sources, 'conditions' in spec ? spec.conditions : {})).dest);
   } catch (error) {
     console.error(`generate: linking program ${name} (${spec.module}) failed:\n${(error as Error).message}`);
     process.exit(1);
@@ -61,4 +65,11 @@ try {
   console.error(`generate: ${(error as Error).message}`);
   process.exit(1);
 }
-console.log(`generate: ${entries.length} programs linked, ${rasterCount} raster programs`);
+const root = fileURLToPath(new URL('..', import.meta.url));
+const codecs = embedCodecs();
+for (const codec of codecs) {
+  const path = `${root}${codec.path}`;
+  if (!existsSync(path) || readFileSync(path, 'utf8') !== codec.text) writeFileSync(path, codec.text);
+}
+const weights = generateOidnWeightModules();
+console.log(`generate: ${entries.length} programs linked, ${rasterCount} raster programs, ${codecs.length} codec modules, ${weights.length} OIDN weights`);

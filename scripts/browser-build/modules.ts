@@ -6,7 +6,9 @@
 //   draco3dgltf, ...) get `webpackIgnore` / `@vite-ignore` comments, so bundlers neither warn
 //   about nor try to resolve them (webpack would otherwise make an empty context module).
 // A Node.js built-in imported by name fails the build (browser code must not name one), and so
-// does import.meta (assets found through it would not be copied).
+// does import.meta (assets found through it would not be copied). Package subpath imports
+// (`#oidn-weights/...`: the OIDN weights, one copy in the package) stay as they are: bundlers
+// resolve them through the package's "imports".
 import { copyFileSync, existsSync, mkdirSync, readFileSync, writeFileSync } from 'node:fs';
 import { isBuiltin } from 'node:module';
 import { dirname, join, posix, relative, resolve, sep } from 'node:path';

@@ -50,6 +50,6 @@ export function rootModuleName(modulePath: string): string {
 }
 
 /** Links one root module of the project (optionally an extra source, e.g. a test kernel). */
-export async function linkProgram(modulePath: string, extra: WeslSources = {}, sources: WeslSources = weslProjectSources()): Promise<LinkedWesl> {
-  return link({ weslSrc: { ...sources, ...extra }, rootModuleName: rootModuleName(modulePath) });
+export async function linkProgram(modulePath: string, extra: WeslSources = {}, sources: WeslSources = weslProjectSources(), conditions: Readonly<Record<string, boolean>> = {}): Promise<LinkedWesl> {
+  return link({ weslSrc: { ...sources, ...extra }, rootModuleName: rootModuleName(modulePath), conditions: { ...conditions } });
 }

@@ -10,14 +10,22 @@ export interface RenderSummary {
   meanSamplesPerPixel?: number;
   /** What ended the render: the spp ceiling, --time or --noise (every pixel converged). */
   stoppedBy?: 'spp' | 'time' | 'noise';
-  denoised?: boolean;
+  /** The denoiser that ran ('oidn', 'atrous'), if any. */
+  denoised?: string;
   /** AOV layers written into the .exr. */
   aovs?: readonly string[];
-  /** Seconds spent in renderFrame calls (excludes setup and the PNG write). */
+  /**
+   * Seconds of the first frame, rendered before the clock starts: drivers that compile pipelines
+   * on their first dispatch compile here. Undefined: not measured apart.
+   */
+  firstFrameSeconds?: number;
+  /** Samples per pixel of the first frame. */
+  firstFrameSamplesPerPixel?: number;
+  /** Seconds spent in the renderFrame calls after the first frame (what --time limits). */
   renderSeconds: number;
   /** Seconds from start to the written PNG. */
   totalSeconds: number;
-  /** Pixel samples taken / renderSeconds. */
+  /** Pixel samples taken after the first frame / renderSeconds (the first frame's, for a one-frame render). */
   samplesPerSecond: number;
   rays: number;
   raysPerSecond: number;
@@ -43,13 +51,16 @@ export function formatSummary(s: RenderSummary): string {
   const adaptive = s.meanSamplesPerPixel !== undefined && s.meanSamplesPerPixel < s.samplesPerPixel - 1e-9 ? `, mean ${s.meanSamplesPerPixel.toFixed(1)}` : '';
   const extras = [
     s.stoppedBy && s.stoppedBy !== 'spp' ? `stopped by ${s.stoppedBy === 'time' ? 'the time limit' : 'the noise target'}` : '',
-    s.denoised ? 'denoised' : '',
+    s.denoised ? `denoised (${s.denoised === 'oidn' ? 'OIDN' : s.denoised === 'atrous' ? 'a-trous' : s.denoised})` : '',
     s.aovs && s.aovs.length > 0 ? `AOVs ${s.aovs.join(', ')}` : '',
   ].filter((e) => e !== '');
   return [
     `wrote ${s.out} (${s.width}x${s.height}, ${s.samplesPerPixel} spp${adaptive})${extras.length > 0 ? `; ${extras.join('; ')}` : ''}`,
     `  ${formatRate(s.samplesPerSecond)}samples/s, ${formatRate(s.raysPerSecond)}rays/s (${formatRate(s.rays)}rays), ` +
       `${formatDuration(s.renderSeconds)} rendering, ${formatDuration(s.totalSeconds)} total`,
+    ...(s.firstFrameSeconds !== undefined
+      ? [`  first frame (${s.firstFrameSamplesPerPixel ?? '?'} spp, with shader compilation) ${formatDuration(s.firstFrameSeconds)}, before the clock: not in the rendering time, rates or --time`]
+      : []),
     `  adapter: ${s.adapter}${s.invalidSamples > 0 ? `; ${s.invalidSamples} invalid samples dropped` : ''}`,
   ].join('\n');
 }

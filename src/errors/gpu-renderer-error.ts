@@ -23,6 +23,8 @@ export type GpuRendererErrorCode =
   | 'RENDERER_DESTROYED'
   | 'SHADER_COMPILATION_FAILED'
   | 'GPU_VALIDATION_FAILED'
+  /** The GPU BVH build or refit reported a failure (accelerationBuildMode 'gpu', updateGeometry). */
+  | 'ACCELERATION_BUILD_FAILED'
   | 'INVALID_CANVAS'
   | 'INVALID_STATE'
   /** An environment map, environment file, sky description or portal that cannot be used. */
@@ -30,7 +32,9 @@ export type GpuRendererErrorCode =
   /** A punctual or area light with missing, non-finite or out-of-range parameters. */
   | 'INVALID_LIGHT'
   /** A feature flag asking for a transport that would add bias (this renderer is unbiased by construction). */
-  | 'BIASED_TRANSPORT_REFUSED';
+  | 'BIASED_TRANSPORT_REFUSED'
+  /** The render farm's job queue (Redis) cannot be reached; `field` names where its address came from. */
+  | 'QUEUE_UNAVAILABLE';
 
 export class GpuRendererError extends Error {
   readonly code: GpuRendererErrorCode;

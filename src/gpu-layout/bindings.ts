@@ -60,6 +60,7 @@ export const pathTracerBindings = {
   denoiseColor: { group: G.transport, binding: 22, kind: 'storage', access: 'read_write', type: 'array<vec4f>', doc: 'two halves: demodulated radiance and its luminance variance' },
   denoiseGuide: { group: G.transport, binding: 23, kind: 'storage', access: 'read_write', type: 'array<vec4f>', doc: 'per pixel: (albedo, depth), (normal, coverage), (emission, 0)' },
   denoised: { group: G.transport, binding: 24, kind: 'storage', access: 'read_write', type: 'array<vec4f>', doc: 'denoised radiance (rgb, 1)' },
+  denoiseEnergy: { group: G.transport, binding: 25, kind: 'storage', access: 'read_write', type: 'array<vec4f>', doc: 'a-trous energy: [0] the per-channel scale, then per 8x8 workgroup the raw and the filtered reflected radiance sums' },
 } as const satisfies Record<string, BindingSpec>;
 
 export type PathTracerBindingName = keyof typeof pathTracerBindings;

@@ -92,7 +92,11 @@ export const PRIMITIVE_SHAPE_SPHERE = 1;
 export const PRIMITIVE_SHAPE_BOX = 2;
 export const PRIMITIVE_SHAPE_MASK = 3;
 export const PRIMITIVE_FLAG_ALPHA = 4;
-export const PRIMITIVE_ALPHA_SHIFT = 3;
+/** A triangle of a single-sided material (glTF `doubleSided: false`): camera rays cull its back face. */
+export const PRIMITIVE_FLAG_SINGLE_SIDED = 8;
+/** Its instance mirrors (negative determinant): the front face is clockwise in world space. */
+export const PRIMITIVE_FLAG_MIRRORED = 16;
+export const PRIMITIVE_ALPHA_SHIFT = 5;
 
 export const INSTANCE_FLAG_NEGATIVE_DETERMINANT = 1 << 2;
 export const INSTANCE_FLAG_HAS_NORMALS = 1 << 3;
@@ -250,6 +254,33 @@ export const TONE_MAPPING_ACES = 1;
 export const TONE_MAPPING_LINEAR = 2;
 export const TONE_MAPPING_AGX = 3;
 
+/**
+ * Fixed sizes of the GPU BVH builder (src/accel/gpu-build/): workgroups of 256 threads; the radix
+ * sort moves 4-bit digits in blocks of 4 keys per thread; the scan handles 4 elements per thread.
+ */
+export const bvhBuildConstants = {
+  BVH_BUILD_WORKGROUP: 256,
+  BVH_SORT_ITEMS: 16,
+  BVH_SORT_BLOCK: 4096,
+  BVH_SORT_RADIX: 16,
+  BVH_SCAN_BLOCK: 1024,
+  /** Primitives per invocation of the centroid-bounds reduction. */
+  BVH_REDUCE_ITEMS: 16,
+  /** Words per LBVH interior node in lbvhData: box (6), SAH cost, height and flags. */
+  BVH_DATA_WORDS: 8,
+  /** A box word not yet written (the NaN pattern no finite box produces). */
+  BVH_UNWRITTEN: 0xffffffff,
+  /** Read attempts of a box another invocation published before giving up (see lbvh-fit.wesl). */
+  BVH_PUBLISH_SPIN_LIMIT: 1 << 20,
+  /** buildSummary words. */
+  BVH_SUMMARY_NODE_COUNT: 0,
+  BVH_SUMMARY_DEPTH: 1,
+  BVH_SUMMARY_SAH_COST: 2,
+  BVH_SUMMARY_LEAF_COUNT: 3,
+  BVH_SUMMARY_ERRORS: 4,
+  BVH_SUMMARY_WORDS: 8,
+} as const;
+
 /** Every constant the WGSL side sees, by its WGSL name (all u32). */
 export const gpuConstants: Readonly<Record<string, number>> = Object.freeze({
   QUEUE_COUNTER_COUNT: queueCounterCount,
@@ -262,6 +293,8 @@ export const gpuConstants: Readonly<Record<string, number>> = Object.freeze({
   PRIMITIVE_SHAPE_BOX,
   PRIMITIVE_SHAPE_MASK,
   PRIMITIVE_FLAG_ALPHA,
+  PRIMITIVE_FLAG_SINGLE_SIDED,
+  PRIMITIVE_FLAG_MIRRORED,
   PRIMITIVE_ALPHA_SHIFT,
   INSTANCE_FLAG_NEGATIVE_DETERMINANT,
   INSTANCE_FLAG_HAS_NORMALS,
@@ -348,6 +381,7 @@ export const gpuConstants: Readonly<Record<string, number>> = Object.freeze({
   LEGACY_CLAMP_EQUIVALENT_RADIANCE,
   PRESENTATION_TONEMAPPED,
   PRESENTATION_LINEAR,
+  ...bvhBuildConstants,
   ...Object.fromEntries(Object.entries(adaptiveListSlots).map(([name, slot]) => [`ADAPTIVE_${snakeUpper(name)}`, slot])),
   ...Object.fromEntries(Object.entries(queueCounterSlots).map(([name, slot]) => [`COUNTER_${snakeUpper(name)}`, slot])),
   QUEUE_LENGTHS_BASE: queueLayoutWords.lengthsBase,

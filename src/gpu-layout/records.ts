@@ -20,7 +20,7 @@ export const primitiveLayout: StructLayout = defineStructLayout('Primitive', 2, 
   ['e1', 'vec3f', 'v1 - v0'],
   ['primitive', 'u32', 'triangle index within the instance mesh'],
   ['e2', 'vec3f', 'v2 - v0'],
-  ['shape', 'u32', 'kind | PRIMITIVE_FLAG_ALPHA | alpha record index << PRIMITIVE_ALPHA_SHIFT'],
+  ['shape', 'u32', 'kind | PRIMITIVE_FLAG_ALPHA | PRIMITIVE_FLAG_SINGLE_SIDED | PRIMITIVE_FLAG_MIRRORED | alpha record index << PRIMITIVE_ALPHA_SHIFT'],
 ]);
 
 /** Flattened BVH node: interior nodes keep both children adjacent at leftOrFirst, leftOrFirst + 1. */
@@ -29,6 +29,25 @@ export const bvhNodeLayout: StructLayout = defineStructLayout('BvhNode', 1, [
   ['leftOrFirst', 'u32', 'first child (interior) or first primitive (leaf)'],
   ['boundsMax', 'vec3f'],
   ['primitiveCount', 'u32', '0 for interior nodes'],
+]);
+
+/**
+ * Constants of one dispatch of the GPU BVH builder (src/accel/gpu-build/): the same record for every
+ * pass, with the pass-specific fields (sort digit, scan level, node count) filled in per slot.
+ */
+export const bvhBuildUniformsLayout: StructLayout = defineStructLayout('BvhBuildUniforms', 1, [
+  ['primitiveCount', 'u32', 'n: leaves of the LBVH'],
+  ['internalCount', 'u32', 'n - 1: interior nodes of the LBVH'],
+  ['keyWords', 'u32', 'Morton key words per primitive: 1 (30-bit codes) or 2 (60-bit)'],
+  ['maxLeafSize', 'u32', 'subtrees of at most this many primitives may collapse into one leaf'],
+  ['traversalCost', 'f32', 'SAH C_trav of the leaf-collapse decision'],
+  ['intersectionCost', 'f32', 'SAH C_isect of the leaf-collapse decision'],
+  ['digitShift', 'u32', 'radix sort: bit offset of this pass\'s 4-bit digit in its key word'],
+  ['digitWord', 'u32', 'radix sort: key word of this pass\'s digit'],
+  ['blockCount', 'u32', 'radix sort: blocks of SORT_BLOCK keys'],
+  ['scanLength', 'u32', 'prefix scan: elements of this level'],
+  ['nodeCount', 'u32', 'refit: records of the finished tree'],
+  ['reserved0', 'u32'],
 ]);
 
 /**
@@ -580,10 +599,43 @@ export const denoiseUniformsLayout: StructLayout = defineStructLayout('DenoiseUn
   ['sigmaDepth', 'f32', 'depth edge-stopping, in depth-gradient units'],
 ]);
 
+/** One convolution of the OIDN network (src/post/denoise/oidn/conv.wesl). */
+export const oidnConvUniformsLayout: StructLayout = defineStructLayout('OidnConvUniforms', 1, [
+  ['size', 'vec2u', 'resolution the convolution runs at (width, height)'],
+  ['sourceA', 'u32', 'vec4 channel groups of the first source'],
+  ['sourceB', 'u32', 'vec4 channel groups of the concatenated second source (0: none)'],
+  ['upsample', 'u32', '1: the first source is at half resolution (nearest-neighbour 2x upsampling)'],
+  ['pool', 'u32', '1: the output is 2x2 max pooled'],
+  ['destination', 'u32', 'vec4 channel groups of the destination'],
+  ['blocks', 'u32', '16-channel output blocks (the weights hold blocks x 4 bias vec4s first)'],
+]);
+
+/** One tile of the OIDN input, output and autoexposure passes (src/post/denoise/oidn/image.wesl). */
+export const oidnImageUniformsLayout: StructLayout = defineStructLayout('OidnImageUniforms', 1, [
+  ['imageSize', 'vec2u'],
+  ['tileOrigin', 'vec2u', 'image pixel of the tile tensor\'s pixel (0, 0)'],
+  ['tileSize', 'vec2u', 'tile tensor size (multiples of 16)'],
+  ['writeMin', 'vec2u', 'first image pixel the output pass writes'],
+  ['writeMax', 'vec2u', 'one past the last image pixel it writes'],
+  ['exposureBins', 'vec2u', 'autoexposure bins across and down'],
+  ['colorStride', 'u32', 'vec4s per pixel of the colour buffer'],
+  ['divideByCount', 'u32', '1: colour, albedo and normal are sums over the colour\'s alpha (a film)'],
+  ['albedoStride', 'u32'],
+  ['albedoOffset', 'u32'],
+  ['normalStride', 'u32'],
+  ['normalOffset', 'u32'],
+  ['emissionStride', 'u32', '0: no emission bypass'],
+  ['emissionOffset', 'u32'],
+  ['inputChannels', 'u32', '3 colour, 6 + albedo, 9 + normal'],
+  ['autoexposure', 'u32', '1: the input scale comes from the autoexposure pass'],
+  ['inputScale', 'f32', 'the input scale when autoexposure is 0'],
+]);
+
 /** Every record layout, by WGSL struct name. */
 export const wavefrontRecordLayouts = {
   Primitive: primitiveLayout,
   BvhNode: bvhNodeLayout,
+  BvhBuildUniforms: bvhBuildUniformsLayout,
   AlphaPrimitive: alphaPrimitiveLayout,
   Instance: instanceLayout,
   MaterialCore: materialCoreLayout,
@@ -620,6 +672,8 @@ export const wavefrontRecordLayouts = {
   ResolveUniforms: resolveUniformsLayout,
   AdaptiveUniforms: adaptiveUniformsLayout,
   DenoiseUniforms: denoiseUniformsLayout,
+  OidnConvUniforms: oidnConvUniformsLayout,
+  OidnImageUniforms: oidnImageUniformsLayout,
 } as const;
 
 /** Records stored in vec4 heaps get generated WGSL loaders (`load_<snake name>(heap offset)`). */

@@ -1,10 +1,11 @@
 import { GpuRendererError } from '../errors/gpu-renderer-error.ts';
+import { describe } from '../errors/validate.ts';
 
 export interface AcquireGpuDeviceOptions {
   /** Share an existing device instead of creating one. */
   device?: GPUDevice;
   powerPreference?: GPUPowerPreference;
-  /** Features to enable when present on the adapter (missing ones are skipped, not errors). */
+  /** Features to enable when present on the adapter (missing ones are skipped, not errors); default timestamp-query and shader-f16. */
   optionalFeatures?: readonly GPUFeatureName[];
 }
 
@@ -51,7 +52,26 @@ export function describeAdapter(adapter: GPUAdapter): string {
   return describeAdapterInfo(adapter.info as Partial<GPUAdapterInfo> | undefined, 'unknown adapter');
 }
 
+/**
+ * A shared `device` must be a GPUDevice (by shape: `features`, `limits`, `queue`, the create
+ * methods; browsers and Dawn have their own classes) and `powerPreference` one of WebGPU's two.
+ */
+function validateDeviceOptions(options: AcquireGpuDeviceOptions): void {
+  const d = options.device as unknown;
+  if (d !== undefined) {
+    const device = d as Partial<GPUDevice> | null;
+    const ok = typeof device === 'object' && device !== null && typeof device.createCommandEncoder === 'function' && typeof device.createBuffer === 'function' &&
+      typeof device.features?.has === 'function' && typeof device.limits === 'object' && device.limits !== null && typeof device.queue?.submit === 'function';
+    if (!ok) throw new GpuRendererError('INVALID_OPTION', `expected a GPUDevice, got ${describe(d)}`, { field: 'device' });
+  }
+  const p = options.powerPreference as unknown;
+  if (p !== undefined && p !== 'low-power' && p !== 'high-performance') {
+    throw new GpuRendererError('INVALID_OPTION', `expected "low-power" or "high-performance", got ${describe(p)}`, { field: 'powerPreference' });
+  }
+}
+
 export async function acquireGpuDevice(options: AcquireGpuDeviceOptions = {}): Promise<AcquiredGpuDevice> {
+  validateDeviceOptions(options);
   if (options.device) {
     const device = options.device;
     return {
@@ -66,7 +86,8 @@ export async function acquireGpuDevice(options: AcquireGpuDeviceOptions = {}): P
   if (!gpu) throw new GpuRendererError('WEBGPU_UNAVAILABLE', 'WebGPU is not available in this environment (no navigator.gpu and no Dawn).');
   const adapter = await gpu.requestAdapter(options.powerPreference ? { powerPreference: options.powerPreference } : undefined);
   if (!adapter) throw new GpuRendererError('WEBGPU_UNAVAILABLE', 'No WebGPU adapter is available.');
-  const wanted = options.optionalFeatures ?? ['timestamp-query'];
+  // shader-f16: the OIDN denoiser's half-precision network (src/post/denoise/oidn).
+  const wanted = options.optionalFeatures ?? ['timestamp-query', 'shader-f16'];
   const requiredFeatures = wanted.filter((f) => adapter.features.has(f));
   // Ask for the adapter's own storage limits: scenes are bounded by what the device really offers.
   const requiredLimits: Record<string, number> = {

@@ -33,7 +33,8 @@ import {
   lookupSheenAlbedo,
 } from './energy/table-lookup.ts';
 import { dielectricFresnelRgb, fresnelDielectric, fresnelSchlick, iorToF0, iridescentFresnel } from './reference/fresnel.ts';
-import { anisotropicAlphas, ggxDAniso, ggxG2, ggxVisibleNormalPdf, type Alphas } from './reference/microfacet.ts';
+import { anisotropicAlphas, ggxDAniso, ggxG2, ggxVisibleNormalPdf, ggxVisibleNormalSamplePoint, sampleGgxVisibleNormal, type Alphas } from './reference/microfacet.ts';
+import { lobeAlphas } from './reference/lobes.ts';
 import { sheenBrdf } from './reference/sheen.ts';
 import { cross, maxComponent, normalize as normalize3 } from './reference/vector.ts';
 
@@ -200,7 +201,7 @@ const scale3 = (a: Vec3, k: number): Vec3 => [a[0] * k, a[1] * k, a[2] * k];
 const mix3 = (a: Vec3, b: Vec3, t: number): Vec3 => [a[0] + (b[0] - a[0]) * t, a[1] + (b[1] - a[1]) * t, a[2] + (b[2] - a[2]) * t];
 
 function alphasOf(m: GltfBsdfMaterial): Alphas {
-  if (m.anisotropy !== undefined) return anisotropicAlphas(m.roughness, m.anisotropy);
+  if (m.anisotropy !== undefined) return lobeAlphas(anisotropicAlphas(m.roughness, m.anisotropy));
   const a = m.roughness * m.roughness;
   return { x: a, y: a };
 }
@@ -287,9 +288,65 @@ function metalCompensation(m: GltfBsdfMaterial, cosO: number): Vec3 {
 }
 
 function transmissionCompensation(m: GltfBsdfMaterial, cosO: number): number {
-  if (!m.energyCompensation) return 1;
+  if (!m.energyCompensation || indexMatched(m)) return 1;
   const e = m.transmission?.refractive ? lookupDielectricInterfaceAlbedo(cosO, m.roughness, dielectricEtaCoordinate(m.ior)) : lookupGgxAlbedo(cosO, m.roughness);
   return 1 / e;
+}
+
+/**
+ * A refractive interface of relative index exactly 1 (gltf-bsdf.wesl index_matched): its
+ * transmission is the delta wi = -wo at every roughness (Walter et al. 2007's eta -> 1 limit).
+ */
+export function indexMatched(m: GltfBsdfMaterial): boolean {
+  return m.transmission?.refractive === true && m.ior === 1;
+}
+
+/**
+ * The thin wall's slope scale (gltf-bsdf.wesl thin_slope_scale): its prisms deflect by (eta - 1) A,
+ * so the transmitted lobe's alphas are the specular lobe's times clamp(2 |eta - 1|, 0, 1).
+ */
+export function thinSlopeScale(m: GltfBsdfMaterial): number {
+  if (!Number.isFinite(m.ior)) return 1;
+  return Math.min(1, Math.max(0, 2 * Math.abs(m.ior - 1)));
+}
+
+function thinTransmissionAlphas(m: GltfBsdfMaterial): Alphas {
+  const a = alphasOf(m);
+  const k = thinSlopeScale(m);
+  return lobeAlphas({ x: a.x * k, y: a.y * k });
+}
+
+/** Transmission straight through, a delta (gltf-bsdf.wesl straight_transmission). */
+export function straightTransmission(m: GltfBsdfMaterial): boolean {
+  if (!m.transmission) return false;
+  return m.transmission.refractive ? indexMatched(m) : smoothAlphas(thinTransmissionAlphas(m));
+}
+
+/**
+ * The delta transmission of a surface that transmits straight through (straightTransmission): its
+ * weight (1 - metallic) transmission baseColor (1 - max F(wo.h)), the light each visible microfacet
+ * does not reflect, averaged over the distribution of visible normals D_wo (Heitz 2018) by an
+ * n x n midpoint rule in the sampling mapping's unit square (whose image measure is D_wo), or at
+ * h = n when smooth. The layers above (clearcoat, sheen) are not included.
+ */
+export function gltfStraightTransmittance(m: GltfBsdfMaterial, wo: Vec3, n = 256): Vec3 {
+  if (!straightTransmission(m) || wo[2] <= 0) return [0, 0, 0];
+  const a = alphasOf(m);
+  const k = (1 - m.metallic) * m.transmission!.factor;
+  const at = (cos: number): number => 1 - maxComponent(gltfDielectricFresnel(m, cos));
+  let mean = 0;
+  if (smoothAlphas(a)) {
+    mean = at(wo[2]);
+  } else {
+    for (let i = 0; i < n; i++) {
+      for (let j = 0; j < n; j++) {
+        const h = sampleGgxVisibleNormal(wo, a, (i + 0.5) / n, (j + 0.5) / n);
+        mean += at(Math.min(1, Math.max(0, dot(wo, h))));
+      }
+    }
+    mean /= n * n;
+  }
+  return scale3(m.baseColor, k * mean);
 }
 
 interface Weights {
@@ -302,7 +359,7 @@ interface Weights {
 
 /** Lobe selection probabilities at wo (gltf-bsdf.wesl lobe_weights). */
 export function gltfLobeWeights(m: GltfBsdfMaterial, wo: Vec3): Weights {
-  const f = maxComponent(plainDielectricFresnel(m, wo[2]));
+  const f = maxComponent(gltfDielectricFresnel(m, wo[2]));
   const mt = m.metallic;
   const t = m.transmission?.factor ?? 0;
   const dt = m.diffuseTransmission?.factor ?? 0;
@@ -339,7 +396,7 @@ export function gltfLobeWeights(m: GltfBsdfMaterial, wo: Vec3): Weights {
   return { coat: coat / total, sheen: sheen / total, microfacet: microfacet / total, diffuse: diffuse / total, diffuseReflect };
 }
 
-/** Probability of reflection among the microfacet lobes given the plain dielectric F (largest channel) at h. */
+/** Probability of reflection among the microfacet lobes given the dielectric F (largest channel, thin film included) at h. */
 export function gltfReflectProbability(m: GltfBsdfMaterial, f: number): number {
   if (!m.transmission) return 1;
   const mt = m.metallic;
@@ -380,7 +437,6 @@ function baseEval(m: GltfBsdfMaterial, w: Weights, wo: Vec3, wi: Vec3): { f: Vec
   const cosH = Math.min(1, Math.max(0, dot(wo, h)));
   const fd = gltfDielectricFresnel(m, cosH);
   const fMax = maxComponent(fd);
-  const pf = m.iridescence && m.transmission ? maxComponent(plainDielectricFresnel(m, cosH)) : fMax;
   const weight = diffuseWeight(m, wo[2], wi[2], fMax);
   if (upper) {
     if (!smooth) {
@@ -389,7 +445,7 @@ function baseEval(m: GltfBsdfMaterial, w: Weights, wo: Vec3, wi: Vec3): { f: Vec
       let dielectric = fd;
       if (m.energyCompensation && m.transmission) dielectric = scale3(dielectric, t * transmissionCompensation(m, wo[2]) + (1 - t));
       f = scale3(add3(scale3(metal, mt), scale3(dielectric, 1 - mt)), spec);
-      microfacetPdf = (ggxVisibleNormalPdf(wo, h, a) / (4 * dot(wo, h))) * gltfReflectProbability(m, pf);
+      microfacetPdf = (ggxVisibleNormalPdf(wo, h, a) / (4 * dot(wo, h))) * gltfReflectProbability(m, fMax);
     }
     f = add3(f, scale3(m.baseColor, ((1 - mt) * weight * (1 - t) * (1 - dt)) / Math.PI));
     diffusePdf = (w.diffuseReflect * wi[2]) / Math.PI;
@@ -401,11 +457,20 @@ function baseEval(m: GltfBsdfMaterial, w: Weights, wo: Vec3, wi: Vec3): { f: Vec
       const denom = (dot(wi, h) + cosH / m.ior) ** 2;
       const btdf = (ggxDAniso(h, a) * ggxG2(wo, wi, a) * Math.abs((dot(wi, h) * cosH) / (denom * wi[2] * wo[2]))) / (m.ior * m.ior);
       f = scale3(m.baseColor, k * btdf);
-      microfacetPdf = ((ggxVisibleNormalPdf(wo, h, a) * Math.abs(dot(wi, h))) / denom) * (1 - gltfReflectProbability(m, pf));
+      microfacetPdf = ((ggxVisibleNormalPdf(wo, h, a) * Math.abs(dot(wi, h))) / denom) * (1 - gltfReflectProbability(m, fMax));
     } else if (!m.transmission.refractive) {
-      const btdf = (ggxDAniso(h, a) * ggxG2(wo, wm, a)) / (4 * wo[2] * wm[2]);
-      f = scale3(m.baseColor, k * btdf);
-      microfacetPdf = (ggxVisibleNormalPdf(wo, h, a) / (4 * dot(wo, h))) * (1 - gltfReflectProbability(m, pf));
+      // The thin wall's lobe under its own alphas; the reflection's microfacet normal from the same
+      // sampling-square point chose between them (gltf-bsdf.wesl base_eval).
+      const at = thinTransmissionAlphas(m);
+      if (!smoothAlphas(at)) {
+        const [u0, u1] = ggxVisibleNormalSamplePoint(wo, at, h);
+        const same = at.x === a.x && at.y === a.y;
+        const pf = same ? fMax : maxComponent(gltfDielectricFresnel(m, dot(wo, sampleGgxVisibleNormal(wo, a, u0, u1))));
+        const rescale = m.energyCompensation ? lookupGgxAlbedo(wo[2], m.roughness) / lookupGgxAlbedo(wo[2], m.roughness * Math.sqrt(thinSlopeScale(m))) : 1;
+        const btdf = (ggxDAniso(h, at) * ggxG2(wo, wm, at)) / (4 * wo[2] * wm[2]);
+        f = scale3(m.baseColor, k * rescale * btdf);
+        microfacetPdf = (ggxVisibleNormalPdf(wo, h, at) / (4 * dot(wo, h))) * (1 - gltfReflectProbability(m, pf));
+      }
     }
   }
   if (m.diffuseTransmission && dt > 0) {

@@ -41,7 +41,7 @@ export interface BufferPlanInput {
   maxDepth: number;
   aovs: boolean;
   /** Output features that size full-frame buffers (issue 9); all false keeps them minimal. */
-  output?: { moments: boolean; adaptive: boolean; denoise: boolean };
+  output?: { moments: boolean; adaptive: boolean; denoise: boolean; atrous?: boolean };
   /** Frames whose statistics may be in flight at once (one timestamp pair each); default 1. */
   framesInFlight?: number;
   /** Waves encoded per command buffer (maxFramePassesPerSubmission); default maxWavesPerSubmission. */
@@ -100,9 +100,10 @@ export function planBuffers(i: BufferPlanInput): Record<PlannedBufferName, Plann
     adaptiveError: frame(perPixel(out.adaptive) * 4, 'the adaptive-sampling errors (width x height)'),
     adaptivePixels: frame((adaptiveListSlots.listStart + (out.adaptive ? pixels : 0)) * 4, 'the active-pixel list (width x height)'),
     denoise: frame(denoiseUniformsLayout.size, 'the denoiser input constants'),
-    denoiseColor: frame(perPixel(out.denoise, 2) * 16, 'the denoiser ping-pong buffers (width x height)'),
-    denoiseGuide: frame(perPixel(out.denoise, 3) * 16, 'the denoiser guides (width x height)'),
+    denoiseColor: frame(perPixel(out.atrous ?? out.denoise, 2) * 16, 'the a-trous ping-pong buffers (width x height)'),
+    denoiseGuide: frame(perPixel(out.atrous ?? out.denoise, 3) * 16, 'the a-trous guides (width x height)'),
     denoised: frame(perPixel(out.denoise) * 16, 'the denoised image (width x height)'),
+    denoiseEnergy: frame((out.atrous ?? out.denoise ? 1 + 2 * Math.ceil(i.width / 8) * Math.ceil(i.height / 8) : 1) * 16, 'the a-trous energy sums (width x height / 64)'),
     displayUniforms: frame(resolveUniformsLayout.size, 'the display constants'),
     displayPixels: frame(pixels * 4, 'the display pixels (width x height)'),
     timestamps: frame(256 * (i.framesInFlight ?? 1), 'the timestamp results'),

@@ -5,6 +5,7 @@ import type { WavefrontToneMapping } from '../scene/types.ts';
 import { normalizeWavefrontCamera, type WavefrontCamera } from './camera.ts';
 import { outputOptionNames, parseOutputOptions, type WavefrontOutputConfig } from './output-options.ts';
 import type { WavefrontPathTracingOptions } from './types.ts';
+import type { AccelerationBuildMode } from './scene/prepare-scene.ts';
 
 export const maxWavefrontDepth = 32;
 export const maxWavefrontImageSize = 16384;
@@ -36,6 +37,8 @@ export interface WavefrontPathTracingComputeConfig {
   lighting: LightingConfig;
   /** Multiple-scattering energy compensation of rough microfacet lobes (materials). */
   energyCompensation: boolean;
+  /** Where the BVH is built: 'cpu-upload' (binned SAH on the CPU, uploaded) or 'gpu' (LBVH in WGSL). */
+  accelerationBuildMode: AccelerationBuildMode;
 }
 
 const toneMappings: readonly WavefrontToneMapping[] = ['neutral', 'aces', 'linear', 'agx'];
@@ -48,6 +51,7 @@ export const wavefrontOptionNames: ReadonlySet<string> = new Set<keyof Wavefront
   // Lighting (src/lighting/lighting-options.ts).
   'environmentMap', 'environmentLighting', 'environmentPortals', 'environmentPortalMode', 'lightSampler', 'environmentSampling',
   'energyCompensation',
+  'accelerationBuildMode',
 ]);
 
 /** Validates the non-geometry options; every error names its field. */
@@ -78,9 +82,12 @@ export function createWavefrontPathTracingComputeConfig(options: Partial<Wavefro
   const exposure = options.exposure === undefined ? 1 : requireNumberInRange(options.exposure, 'exposure', { min: 0 });
   if (options.aovs !== undefined && typeof options.aovs !== 'boolean') fail('INVALID_OPTION', 'aovs', 'expected a boolean');
   if (options.energyCompensation !== undefined && typeof options.energyCompensation !== 'boolean') fail('INVALID_OPTION', 'energyCompensation', 'expected a boolean');
+  const accelerationBuildMode = options.accelerationBuildMode ?? 'cpu-upload';
+  if (accelerationBuildMode !== 'cpu-upload' && accelerationBuildMode !== 'gpu') fail('INVALID_OPTION', 'accelerationBuildMode', `expected "cpu-upload" or "gpu", got ${JSON.stringify(accelerationBuildMode)}`);
   const output = parseOutputOptions(options);
   return {
     width, height, maxDepth, samplesPerPixel, tileSize, framesInFlight, seed, camera, environment, toneMapping, exposure, aovs: options.aovs ?? false, output, lighting,
     energyCompensation: options.energyCompensation ?? true,
+    accelerationBuildMode,
   };
 }

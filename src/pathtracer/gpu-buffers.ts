@@ -28,6 +28,12 @@ export class GpuBufferSet {
     buffer.destroy();
   }
 
+  /** Destroys `old` and creates its successor of `size` bytes (a buffer that had to grow). */
+  replace(old: GPUBuffer, label: string, size: number, usage: number, category: 'scene' | 'queue' | 'frame'): GPUBuffer {
+    this.release(old);
+    return this.create(label, size, usage, category);
+  }
+
   bytes(category: 'scene' | 'queue' | 'frame'): number {
     return this.buffers.filter((b) => b.category === category).reduce((n, b) => n + b.buffer.size, 0);
   }

@@ -1,7 +1,9 @@
 import { GpuRendererError } from '../errors/gpu-renderer-error.ts';
 import { bindingLayoutEntry, pathTracerBindings, type BindingSpec } from '../gpu-layout/bindings.ts';
 import { ShaderStage } from '../gpu/webgpu-constants.ts';
+import { oidnBindings } from '../post/denoise/oidn/bindings.ts';
 import { displayBindings } from '../shaders/display-bindings.ts';
+import { bvhBuildBindings } from '../accel/gpu-build/bindings.ts';
 import type { ShaderFeatures } from '../shaders/features.ts';
 import { generatedPrograms } from '../shaders/programs.generated.ts';
 import { programSpecs, type ProgramName } from '../shaders/programs.ts';
@@ -33,7 +35,7 @@ export interface PathTracerPipelines {
   resolve: KernelPipeline;
 }
 
-const tables: Record<string, Record<string, BindingSpec>> = { pathTracer: pathTracerBindings, display: displayBindings };
+const tables: Record<string, Record<string, BindingSpec>> = { pathTracer: pathTracerBindings, display: displayBindings, bvhBuild: bvhBuildBindings, oidn: oidnBindings };
 const programTable = Object.fromEntries(Object.entries(programSpecs).map(([name, spec]) => [name, spec.bindings])) as Record<ProgramName, string>;
 
 /** Explicit bind group layouts for exactly the bindings a program's linked WGSL declares. */

@@ -10,15 +10,16 @@ import { uploadTextureAtlas } from '../materials/textures/upload-texture-atlas.t
 import { isWavefrontAovName, wavefrontAovNames, type WavefrontAovName } from '../post/aovs.ts';
 import { normalizeWavefrontScene, type NormalizedScene } from '../scene/normalize-scene.ts';
 import type { WavefrontCameraInput } from '../scene/types.ts';
-import { allShaderFeatures, type ShaderFeatures } from '../shaders/features.ts';
+import { allShaderFeatures } from '../shaders/features.ts';
 import { createKernelBindGroups, type PathTracerResourceMap } from './bind-groups.ts';
-import { checkBufferLimits, planBuffers, waveBufferBytes, type BufferPlanInput, type PlannedBuffer, type PlannedBufferName } from './buffer-plan.ts';
+import { checkBufferLimits, planBuffers, waveBufferBytes, type PlannedBuffer, type PlannedBufferName } from './buffer-plan.ts';
 import { normalizeWavefrontCamera } from './camera.ts';
 import { resolveCanvasTarget } from './canvas-target.ts';
 import { createWavefrontPathTracingComputeConfig, type WavefrontPathTracingComputeConfig } from './config.ts';
 import { instanceMaterial } from './scene/flatten-primitives.ts';
 import { AdaptiveScheduler, createAdaptivePipelines } from './adaptive-scheduler.ts';
-import { AtrousDenoisePass, createDenoisePipelines } from './denoise-pass.ts';
+import type { WavefrontDenoiser, WavefrontDenoiserFactory } from '../post/denoise/denoiser.ts';
+import { prepareWavefrontDenoiser, resolveWavefrontDenoiser } from './denoise-pass.ts';
 import { DispatchTally } from './dispatch-tally.ts';
 import { readAovImage, readMeanRadiance, readRgbaImage, type InstanceIds } from './film.ts';
 import { FrameReadbackRing, frameStatsFromCounters, type FrameReadout } from './frame-stats.ts';
@@ -28,10 +29,11 @@ import { WavefrontEncoder } from './frame-encoder.ts';
 import { GpuBufferSet, readGpuBuffer } from './gpu-buffers.ts';
 import { pathTracerPipelines, type PathTracerPipelines } from './pipelines.ts';
 import { FilmDisplay } from './presentation.ts';
-import { prepareScene, type PreparedScene } from './scene/prepare-scene.ts';
-import { vertexStreamBytes } from './scene/pack-vertices.ts';
-import { materialFeatures } from './scene/material-features.ts';
-import { materialHeapCells } from './scene/pack-materials.ts';
+import { prepareGeometry, prepareMaterials, sceneExtent, type PreparedScene } from './scene/prepare-scene.ts';
+import { SceneAcceleration } from './scene/scene-acceleration.ts';
+import { packGeometryUpdate, type WavefrontGeometryUpdate, type WavefrontGeometryUpdateStats } from './scene/geometry-update.ts';
+import { lightingOptionsOf, prepareSceneUpdate, type SceneSources } from './scene-update.ts';
+import { planInput, sceneFeatures } from './scene-plan.ts';
 import { planFrameWaves, planListWaves, type Wave } from './waves.ts';
 import { deviceWavePaths, gridWorkgroupLimit, waveBound } from './wave-capacity.ts';
 import type {
@@ -43,37 +45,9 @@ import type {
   WavefrontRadianceImage,
   WavefrontRenderFrameOptions,
   WavefrontRendererSnapshot,
+  WavefrontSceneUpdate,
 } from './types.ts';
 import { packBounceUniforms, packDisplayUniforms, packFrameUniforms, packWaveUniforms } from './uniforms.ts';
-
-/** Sizes known from the validated scene, before the BVH is built: what the first limit check uses. */
-function planInput(config: WavefrontPathTracingComputeConfig, scene: NormalizedScene, wavePaths: number): BufferPlanInput {
-  let alpha = 0;
-  let lights = 0;
-  for (const inst of scene.instances) {
-    const material = scene.materials[inst.material ?? scene.meshMaterials[inst.mesh]!]!;
-    const triangles = scene.meshes[inst.mesh]!.triangleCount;
-    if (material.alphaMode !== 'OPAQUE') alpha += triangles;
-    if (material.emission.some((c) => c > 0)) lights += triangles;
-  }
-  return {
-    width: config.width,
-    height: config.height,
-    wavePaths,
-    maxDepth: config.maxDepth,
-    aovs: outputFeatures(config).aovs,
-    output: { moments: outputFeatures(config).moments, adaptive: config.output.adaptive !== null, denoise: config.output.denoise !== null },
-    wavesPerSubmission: config.output.maxFramePassesPerSubmission,
-    framesInFlight: config.framesInFlight,
-    ...vertexStreamBytes(scene.meshes),
-    primitiveCount: scene.triangleCount + scene.sceneObjects.length,
-    alphaPrimitiveCount: alpha,
-    instanceCount: scene.instances.length + scene.sceneObjects.length,
-    lightCount: lights,
-    // Cores, extension blocks and texture bindings (the exact heap, tables included, is checked after packing).
-    materialCells: materialHeapCells([...scene.materials, ...scene.sceneObjects.map((o) => o.material)]),
-  };
-}
 
 /**
  * Object id (the packed instance record's objectId: the instance's numeric id, else its index) and
@@ -92,33 +66,6 @@ function instanceIdTables(scene: NormalizedScene, prepared: PreparedScene): Inst
   return { objectIds, materialIds };
 }
 
-/** Output accumulation the options need: the denoiser's guides are the AOVs, its variance the moments. */
-function outputFeatures(config: WavefrontPathTracingComputeConfig): { aovs: boolean; moments: boolean } {
-  const denoise = config.output.denoise !== null;
-  return { aovs: config.aovs || denoise, moments: config.aovs || denoise || config.output.adaptive !== null };
-}
-
-/** The shader features a scene needs; everything else is compiled out. */
-function sceneFeatures(prepared: PreparedScene, lighting: GpuLighting, config: WavefrontPathTracingComputeConfig): ShaderFeatures {
-  return {
-    FEATURE_ANALYTIC_SHAPES: prepared.uses.analyticShapes,
-    FEATURE_ALPHA_TEST: prepared.uses.alphaTest,
-    FEATURE_TEXTURES: prepared.uses.textures,
-    FEATURE_EMISSIVE_LIGHTS: prepared.uses.emissiveLights,
-    FEATURE_ENVIRONMENT: lighting.uses.environment,
-    FEATURE_ENVIRONMENT_MAP: lighting.uses.environmentMap,
-    FEATURE_SUN: lighting.uses.sun,
-    FEATURE_PORTALS: lighting.uses.portals,
-    FEATURE_PUNCTUAL_LIGHTS: lighting.uses.punctualLights,
-    FEATURE_AREA_LIGHTS: lighting.uses.areaLights,
-    FEATURE_LIGHT_TREE: lighting.uses.lightTree,
-    FEATURE_AOVS: outputFeatures(config).aovs,
-    FEATURE_FILM_MOMENTS: outputFeatures(config).moments,
-    FEATURE_ADAPTIVE_SAMPLING: config.output.adaptive !== null,
-    ...materialFeatures(prepared.uses.materials),
-  };
-}
-
 /**
  * Creates the wavefront path tracer: validates every option and the scene (typed errors naming the
  * field; nothing is allocated for invalid input), acquires or shares a device, checks every buffer
@@ -132,17 +79,19 @@ export async function createWavefrontPathTracingComputeRenderer(options: Wavefro
   const specialization = options.shaderSpecialization ?? 'scene';
   if (specialization !== 'scene' && specialization !== 'off') throw new GpuRendererError('INVALID_OPTION', 'expected "scene" or "off"', { field: 'shaderSpecialization' });
   const acquired = await acquireGpuDevice({
-    ...(options.device ? { device: options.device } : {}),
-    ...(options.powerPreference ? { powerPreference: options.powerPreference } : {}),
+    ...(options.device !== undefined ? { device: options.device } : {}),
+    ...(options.powerPreference !== undefined ? { powerPreference: options.powerPreference } : {}),
   });
   try {
+    resolveWavefrontDenoiser(config.output, acquired.device);
     const limits = acquired.device.limits;
     // Buffers are checked at the largest wave this renderer may grow to; they start at the work of
     // one call of samplesPerPixel and grow when a frame asks for more (growQueues).
     const maxWavePaths = waveBound(deviceWavePaths(limits), config.tileSize);
     const estimate = planInput(config, scene, maxWavePaths);
     checkBufferLimits(limits, planBuffers(estimate));
-    const prepared = await prepareScene(scene, { maxTextureDimension2D: limits.maxTextureDimension2D, maxTextureArrayLayers: limits.maxTextureArrayLayers }, { energyCompensation: config.energyCompensation });
+    const materials = prepareMaterials(scene, { maxTextureDimension2D: limits.maxTextureDimension2D, maxTextureArrayLayers: limits.maxTextureArrayLayers }, { energyCompensation: config.energyCompensation });
+    const prepared = await prepareGeometry(scene, materials, { accelerationBuildMode: config.accelerationBuildMode });
     const lighting = buildGpuLighting({ config: config.lighting, triangles: { records: prepared.lights, count: prepared.lightCount }, sceneCenter: prepared.sceneCenter, sceneRadius: prepared.sceneRadius });
     const plan = planBuffers({ ...estimate, materialCells: prepared.materials.byteLength / 16, lightCount: prepared.lightCount, lightHeapCells: lighting.heap.byteLength / 16, primitiveCount: prepared.primitiveCount });
     checkBufferLimits(limits, plan);
@@ -152,9 +101,16 @@ export async function createWavefrontPathTracingComputeRenderer(options: Wavefro
     const [pipelines, adaptivePipelines, denoisePipelines] = await Promise.all([
       pathTracerPipelines(acquired.device, features),
       config.output.adaptive ? createAdaptivePipelines(acquired.device, features) : null,
-      config.output.denoise ? createDenoisePipelines(acquired.device, features) : null,
+      config.output.denoise ? prepareWavefrontDenoiser(acquired.device, config.output.denoise, config.output.denoiseWeights, features) : null,
     ]);
-    const renderer = new WavefrontRenderer(acquired, config, scene, prepared, lighting, { ...pipelines, adaptive: adaptivePipelines, denoise: denoisePipelines }, initialPlan, { wavePaths, maxWavePaths });
+    const sources: SceneSources = { materials, features, lightingOptions: lightingOptionsOf(options) };
+    const renderer = new WavefrontRenderer(acquired, config, scene, sources, prepared, lighting, { ...pipelines, adaptive: adaptivePipelines, denoise: denoisePipelines }, initialPlan, { wavePaths, maxWavePaths });
+    try {
+      await renderer.createAcceleration();
+    } catch (error) {
+      renderer.destroy();
+      throw error;
+    }
     if (canvas) await renderer.attachCanvas(canvas);
     return renderer;
   } catch (error) {
@@ -168,7 +124,7 @@ export const adaptiveStepSamples = 4;
 
 type RendererPipelines = PathTracerPipelines & {
   adaptive: Awaited<ReturnType<typeof createAdaptivePipelines>> | null;
-  denoise: Awaited<ReturnType<typeof createDenoisePipelines>> | null;
+  denoise: WavefrontDenoiserFactory | null;
 };
 
 /** What one frame's passes produced, before the statistics are read back. */
@@ -187,17 +143,21 @@ class WavefrontRenderer extends EventTarget implements WavefrontPathTracingRende
   private readonly ownsDevice: boolean;
   private readonly adapter: string;
   private config: WavefrontPathTracingComputeConfig;
-  private readonly scene: { instanceCount: number; sceneObjectCount: number; prepared: PreparedScene };
+  private scene: { instanceCount: number; sceneObjectCount: number; prepared: PreparedScene; normalized: NormalizedScene };
+  /** What updateScene rebuilds geometry from: the packed materials, the compiled features, the lighting options. */
+  private sources: SceneSources;
+  private readonly kernels: PathTracerPipelines['kernels'];
+  /** The BVH on the device (build mode, refit and rebuild for geometry updates). */
+  private acceleration: SceneAcceleration | null = null;
   /** Paths per wave the queue buffers hold now, and the most they may grow to. */
   private capacity: number;
   private readonly maxWavePaths: number;
   private readonly buffers: GpuBufferSet;
   private readonly resources: Record<PlannedBufferName, GPUBuffer>;
-  private readonly kernelPipelines: PathTracerPipelines['kernels'];
   private readonly resourceMap: PathTracerResourceMap;
   private readonly atlasTexture: GPUTexture;
   private readonly environmentTexture: GPUTexture;
-  private readonly lighting: GpuLighting;
+  private lighting: GpuLighting;
   private readonly textureBytes: number;
   private readonly encoderOfWaves: WavefrontEncoder;
   private readonly display: FilmDisplay;
@@ -206,8 +166,8 @@ class WavefrontRenderer extends EventTarget implements WavefrontPathTracingRende
   private submissions: Promise<unknown> = Promise.resolve();
   private queuedSubmissions = 0;
   private readonly adaptive: AdaptiveScheduler | null;
-  private readonly denoiser: AtrousDenoisePass | null;
-  private readonly instanceIds: InstanceIds;
+  private readonly denoiser: WavefrontDenoiser | null;
+  private instanceIds: InstanceIds;
   private frameCount = 0;
   private samplesAccumulated = 0;
   /** Pixel samples in the accumulation (differs from pixels x samplesAccumulated with adaptive sampling). */
@@ -222,6 +182,7 @@ class WavefrontRenderer extends EventTarget implements WavefrontPathTracingRende
     acquired: { device: GPUDevice; ownsDevice: boolean; adapterDescription: string; timestampQueries: boolean; softwareAdapter: boolean },
     config: WavefrontPathTracingComputeConfig,
     scene: NormalizedScene,
+    sources: SceneSources,
     prepared: PreparedScene,
     lighting: GpuLighting,
     pipelines: RendererPipelines,
@@ -233,16 +194,19 @@ class WavefrontRenderer extends EventTarget implements WavefrontPathTracingRende
     this.ownsDevice = acquired.ownsDevice;
     this.adapter = acquired.adapterDescription;
     this.config = config;
-    this.scene = { instanceCount: scene.instances.length, sceneObjectCount: scene.sceneObjects.length, prepared };
+    this.sources = sources;
+    this.kernels = pipelines.kernels;
+    this.scene = { instanceCount: scene.instances.length, sceneObjectCount: scene.sceneObjects.length, prepared, normalized: scene };
     this.capacity = waves.wavePaths;
     this.maxWavePaths = waves.maxWavePaths;
     this.lighting = lighting;
     const b = (this.buffers = new GpuBufferSet(device));
     const S = BufferUsage.STORAGE;
+    // The BVH buffers hold any tree of the scene (2n - 1 nodes), so a rebuild fits; in 'gpu' mode the
+    // GPU build fills them (scene-acceleration.ts).
+    const gpuBuild = prepared.acceleration.mode === 'gpu';
     const uploads: Partial<Record<PlannedBufferName, ArrayBuffer>> = {
-      primitives: prepared.primitives,
-      bvhNodes: prepared.bvhNodes,
-      bvhParents: prepared.bvhParents.buffer as ArrayBuffer,
+      ...(gpuBuild ? {} : { primitives: prepared.primitives, bvhNodes: prepared.bvhNodes, bvhParents: prepared.bvhParents.buffer as ArrayBuffer }),
       alphaPrimitives: prepared.alphaPrimitives,
       instances: prepared.instances,
       indices: prepared.indices.buffer as ArrayBuffer,
@@ -272,7 +236,12 @@ class WavefrontRenderer extends EventTarget implements WavefrontPathTracingRende
     const resources = {} as Record<PlannedBufferName, GPUBuffer>;
     for (const [name, p] of Object.entries(plan) as [PlannedBufferName, PlannedBuffer][]) {
       const data = uploads[name];
-      resources[name] = data ? b.upload(name, data, S, p.category) : b.create(name, p.bytes, usage[name] ?? S, p.category);
+      if (name === 'bvhNodes' || name === 'bvhParents') {
+        resources[name] = b.create(name, Math.max(p.bytes, data?.byteLength ?? 0), S | BufferUsage.COPY_DST, p.category);
+        if (data) device.queue.writeBuffer(resources[name], 0, data);
+      } else {
+        resources[name] = data ? b.upload(name, data, S, p.category) : b.create(name, p.bytes, usage[name] ?? S, p.category);
+      }
     }
     this.resources = resources;
     const atlas = uploadTextureAtlas(device, prepared.atlas);
@@ -289,14 +258,13 @@ class WavefrontRenderer extends EventTarget implements WavefrontPathTracingRende
       displayFilm: resources.film,
       displayPixels: resources.displayPixels,
     };
-    this.kernelPipelines = pipelines.kernels;
     this.resourceMap = map;
     this.encoderOfWaves = new WavefrontEncoder(createKernelBindGroups(device, pipelines.kernels, map), config.width * config.height, gridWorkgroupLimit(acquired.softwareAdapter, device.limits));
     const out = config.output;
     this.display = new FilmDisplay(device, pipelines.resolve, map, out.denoise ? resources.denoised : undefined);
     if (out.denoise?.present === 'denoised') this.display.source = 'denoised';
     this.adaptive = out.adaptive && pipelines.adaptive ? new AdaptiveScheduler(device, pipelines.adaptive, map, out.adaptive, config.width, config.height) : null;
-    this.denoiser = out.denoise && pipelines.denoise ? new AtrousDenoisePass(device, pipelines.denoise, map, out.denoise, config.width, config.height, b) : null;
+    this.denoiser = pipelines.denoise?.create({ device, width: config.width, height: config.height, resources: map, createBuffer: (label, size, usage) => b.create(label, size, usage, 'frame') }) ?? null;
     this.adaptive?.reset();
     this.instanceIds = instanceIdTables(scene, prepared);
     device.queue.writeBuffer(resources.bounce, 0, packBounceUniforms(config.maxDepth, this.capacity));
@@ -309,6 +277,47 @@ class WavefrontRenderer extends EventTarget implements WavefrontPathTracingRende
       this.deviceLost = true;
       this.deviceLostMessage = info.message || String(info.reason);
     });
+  }
+
+  /** Uploads or builds the BVH (accelerationBuildMode); called once by the factory. */
+  async createAcceleration(): Promise<void> {
+    const r = this.resources;
+    this.acceleration = await SceneAcceleration.create(this.device, this.scene.prepared, { primitives: r.primitives, bvhNodes: r.bvhNodes, bvhParents: r.bvhParents }, this.buffers);
+  }
+
+  async updateGeometry(update: WavefrontGeometryUpdate): Promise<WavefrontGeometryUpdateStats> {
+    // Frames requested before the update render the geometry they were requested with.
+    await this.submittedWork();
+    const started = performance.now();
+    const p = this.scene.prepared;
+    const packed = packGeometryUpdate(this.scene.normalized, p, update);
+    const extent = sceneExtent(packed.scene, packed.flat);
+    const lighting = packed.lights
+      ? buildGpuLighting({ config: this.config.lighting, triangles: { records: packed.lights.records, count: packed.lights.count }, sceneCenter: extent.sceneCenter, sceneRadius: extent.sceneRadius })
+      : this.lighting;
+    if (lighting.heap.byteLength > this.resources.lights.size) {
+      throw new GpuRendererError('INVALID_STATE', 'the update changes the size of the light tables; create a new renderer for it', { field: 'meshes' });
+    }
+    const queue = this.device.queue;
+    if (packed.vertexStreams) queue.writeBuffer(this.resources.vertexStreams, 0, packed.vertexStreams);
+    if (packed.instances) {
+      queue.writeBuffer(this.resources.instances, 0, packed.instances);
+      p.instances = packed.instances;
+    }
+    if (packed.lights) {
+      queue.writeBuffer(this.resources.lights, 0, lighting.heap);
+      queue.writeBuffer(this.resources.lighting, 0, lighting.uniforms);
+      this.lighting = lighting;
+      p.lights = packed.lights.records;
+      p.lightPower = packed.lights.totalPower;
+    }
+    this.scene.normalized = packed.scene;
+    p.sceneCenter = extent.sceneCenter;
+    p.sceneRadius = extent.sceneRadius;
+    this.writeFrameUniforms();
+    const accelerationMs = await this.acceleration!.update(packed.flat, packed.bvh);
+    this.resetAccumulation();
+    return { bvh: packed.bvh, accelerationMs, totalMs: performance.now() - started };
   }
 
   private writeFrameUniforms(): void {
@@ -407,7 +416,7 @@ class WavefrontRenderer extends EventTarget implements WavefrontPathTracingRende
     this.buffers.release(old.paths);
     this.buffers.release(old.queues);
     this.capacity = wanted;
-    this.encoderOfWaves.rebind(createKernelBindGroups(this.device, this.kernelPipelines, this.resourceMap));
+    this.encoderOfWaves.rebind(createKernelBindGroups(this.device, this.kernels, this.resourceMap));
     this.device.queue.writeBuffer(this.resources.bounce, 0, packBounceUniforms(this.config.maxDepth, this.capacity));
     this.writeFrameUniforms();
   }
@@ -643,6 +652,8 @@ class WavefrontRenderer extends EventTarget implements WavefrontPathTracingRende
 
   updateCamera(camera: WavefrontCameraInput): void {
     this.assertUsable();
+    // A camera is required here (undefined would silently mean the default camera).
+    if (camera === undefined) throw new GpuRendererError('INVALID_OPTION', 'expected a camera object, got undefined', { field: 'camera' });
     const normalized = normalizeWavefrontCamera(camera);
     // Frames requested before the change render with the camera they were requested with.
     void this.afterSubmissions(() => {
@@ -651,6 +662,59 @@ class WavefrontRenderer extends EventTarget implements WavefrontPathTracingRende
       this.writeFrameUniforms();
       this.resetAccumulation();
     }).catch(() => undefined);
+  }
+
+  async updateScene(update: WavefrontSceneUpdate): Promise<void> {
+    // Frames requested before the update render the scene they were requested with.
+    await this.submittedWork();
+    const next = await prepareSceneUpdate(this.scene.normalized, this.sources, this.config, update, this.device.limits);
+    this.assertUsable();
+    // Every check passed: from here on nothing throws for the input.
+    const p = next.prepared;
+    let rebind = false;
+    const ensure = (name: PlannedBufferName, bytes: number): GPUBuffer => {
+      let buffer = this.resources[name];
+      if (buffer.size < bytes) {
+        buffer = this.buffers.replace(buffer, name, bytes, BufferUsage.STORAGE | BufferUsage.COPY_DST, 'scene');
+        this.resources[name] = buffer;
+        this.resourceMap[name] = buffer;
+        rebind = true;
+      }
+      return buffer;
+    };
+    const write = (name: PlannedBufferName, data: ArrayBuffer | ArrayBufferView): void => {
+      const bytes = ArrayBuffer.isView(data) ? data : new Uint8Array(data);
+      this.device.queue.writeBuffer(ensure(name, bytes.byteLength), 0, bytes.buffer, bytes.byteOffset, bytes.byteLength);
+    };
+    // The BVH buffers hold any tree of the new scene (2n - 1 nodes), so later rebuilds fit.
+    const gpuBuild = p.acceleration.mode === 'gpu';
+    ensure('primitives', next.plan.primitives.bytes);
+    ensure('bvhNodes', Math.max(next.plan.bvhNodes.bytes, p.bvhNodes.byteLength));
+    ensure('bvhParents', Math.max(next.plan.bvhParents.bytes, p.bvhParents.byteLength));
+    if (!gpuBuild) {
+      write('primitives', p.primitives);
+      write('bvhNodes', p.bvhNodes);
+      write('bvhParents', p.bvhParents);
+    }
+    write('alphaPrimitives', p.alphaPrimitives);
+    write('instances', p.instances);
+    write('indices', p.indices);
+    write('vertexStreams', p.vertexStreams);
+    write('lights', next.lighting.heap);
+    if (rebind) this.encoderOfWaves.rebind(createKernelBindGroups(this.device, this.kernels, this.resourceMap));
+    this.device.queue.writeBuffer(this.resources.lighting, 0, next.lighting.uniforms);
+    this.sources = { ...this.sources, lightingOptions: next.lightingOptions };
+    this.scene = { instanceCount: next.scene.instances.length, sceneObjectCount: next.scene.sceneObjects.length, prepared: p, normalized: next.scene };
+    this.lighting = next.lighting;
+    this.config = { ...this.config, lighting: next.lightingConfig, ...(next.camera ? { camera: next.camera } : {}) };
+    this.instanceIds = instanceIdTables(next.scene, p);
+    // A new tree for the new primitives, in the renderer's build mode (the GPU builds it in 'gpu').
+    this.acceleration?.destroy();
+    this.acceleration = null;
+    const r = this.resources;
+    this.acceleration = await SceneAcceleration.create(this.device, p, { primitives: r.primitives, bvhNodes: r.bvhNodes, bvhParents: r.bvhParents }, this.buffers);
+    this.writeFrameUniforms();
+    this.resetAccumulation();
   }
 
   private resetAccumulation(): void {
@@ -754,6 +818,8 @@ class WavefrontRenderer extends EventTarget implements WavefrontPathTracingRende
     this.destroyed = true;
     this.display.detach();
     this.readbacks.destroy();
+    this.acceleration?.destroy();
+    this.denoiser?.destroy();
     this.buffers.destroy();
     this.atlasTexture.destroy();
     this.environmentTexture.destroy();

@@ -2,6 +2,8 @@ import type { WavefrontLightingOptions, WavefrontSceneLightInput } from '../ligh
 import type { WavefrontAovName } from '../post/aovs.ts';
 import type { WavefrontCameraInput, WavefrontSceneDescription, WavefrontToneMapping } from '../scene/types.ts';
 import type { WavefrontOutputOptions, WavefrontRenderFrameOptions } from './output-options.ts';
+import type { AccelerationBuildMode } from './scene/prepare-scene.ts';
+import type { WavefrontGeometryUpdate, WavefrontGeometryUpdateStats } from './scene/geometry-update.ts';
 import type {
   WavefrontAdaptiveFrameStats,
   WavefrontGpuParallelism,
@@ -15,7 +17,20 @@ export type { WavefrontOutputOptions, WavefrontRenderFrameOptions } from './outp
 export type * from './output-types.ts';
 export type { WavefrontFeatureFlagState, WavefrontTransportExperimentState, WavefrontFeatureFlagResolution, TransportExperimentName } from './feature-flags.ts';
 
+export type { AccelerationBuildMode } from './scene/prepare-scene.ts';
+export type { WavefrontGeometryUpdate, WavefrontGeometryUpdateStats, WavefrontMeshGeometryUpdate, WavefrontInstanceTransformUpdate } from './scene/geometry-update.ts';
+export type { BvhUpdateMode } from './scene/scene-acceleration.ts';
+
 export type CanvasTarget = HTMLCanvasElement | OffscreenCanvas | string;
+
+/** What `updateScene` replaces; what is left out stays. */
+export interface WavefrontSceneUpdate {
+  meshes?: WavefrontSceneDescription['meshes'];
+  /** Without `instances`, the current instances place the new meshes. */
+  instances?: WavefrontSceneDescription['instances'];
+  lights?: WavefrontSceneLightInput[];
+  camera?: WavefrontCameraInput;
+}
 
 /**
  * Renderer options: the scene (what a scene file or the glTF loader gives) plus render settings and
@@ -70,6 +85,14 @@ export interface WavefrontPathTracingOptions extends Omit<WavefrontSceneDescript
    * at grazing angles on rough dielectrics.
    */
   energyCompensation?: boolean;
+  /**
+   * Where the BVH is built. 'cpu-upload' (default): top-down binned SAH on the CPU (worker threads
+   * for large meshes), uploaded once. 'gpu': an LBVH built by WGSL compute passes on the device
+   * (Morton codes, radix sort, Karras 2012 hierarchy, SAH leaf collapse), for a real GPU where
+   * building dominates; its tree's SAH cost is about 25-30 % above the CPU build's (README,
+   * Performance). Both are traced by the same kernels and render the same image.
+   */
+  accelerationBuildMode?: AccelerationBuildMode;
   canvas?: CanvasTarget;
   /** Share a device; otherwise one is acquired (Dawn in Node.js). */
   device?: GPUDevice;
@@ -206,6 +229,26 @@ export interface WavefrontPathTracingRenderer extends EventTarget {
   /** Submits one frame's work without waiting for it (no frameTimeBudgetMs). */
   renderOnce(options?: WavefrontRenderFrameOptions): void;
   updateCamera(camera: WavefrontCameraInput): void;
+  /**
+   * Moves the scene's geometry without recreating the renderer (the next pose of an animation):
+   * new positions (normals, tangents) of its meshes and new instance transforms, topology kept.
+   * The BVH is refitted on the GPU (default) or rebuilt (`bvh: 'rebuild'`), the light tables
+   * follow, and the accumulation restarts. Validated before anything changes: a refused update
+   * (typed error naming the field) leaves the renderer as it was.
+   */
+  updateGeometry(update: WavefrontGeometryUpdate): Promise<WavefrontGeometryUpdateStats>;
+  /**
+   * Replaces the scene's meshes, instances and/or lights, and the camera (what `updateGeometry`
+   * cannot: other meshes or triangle counts, other mesh materials, instances added or removed,
+   * moved punctual lights) without recreating the renderer: materials, textures, the environment
+   * and the compiled kernels stay; the geometry buffers are rewritten (reallocated only when they
+   * must grow), the BVH is built anew in the renderer's accelerationBuildMode, and the
+   * accumulation restarts. Validation errors name the field as at creation. A change that needs a
+   * shader feature the kernels were specialised without (the first alpha-tested or emissive
+   * surface, the first punctual light) is an INVALID_STATE error, and the renderer is left as it
+   * was: create a new one, or one with `shaderSpecialization: 'off'`.
+   */
+  updateScene(update: WavefrontSceneUpdate): Promise<void>;
   /** The raw linear mean radiance, RGBA float32 (alpha 1), top row first: never denoised. */
   readRadiance(): Promise<WavefrontRadianceImage>;
   /** The denoised linear radiance of the accumulation (needs `denoise`), RGBA float32 (alpha 1). */

@@ -6,4 +6,5 @@ export { normalizeWavefrontInstance, type NormalizedInstance } from './instance.
 export { normalizeWavefrontScene, type NormalizedScene } from './normalize-scene.ts';
 export { maxCoordinateMagnitude, maxRadiance, maxEmittedPower } from './limits.ts';
 export { createCornellBoxScene } from './cornell-box.ts';
+export { frameBounds, orbitCamera, lookAtCamera, sceneBounds, defaultFraming, type FrameBoundsOptions, type SceneBounds } from './camera-framing.ts';
 export { parseSceneFile, validateSceneDescription, type WavefrontSceneFile, type WavefrontEnvironmentMapReference } from './scene-file.ts';

@@ -38,6 +38,11 @@ export interface WavefrontEnvironmentMapReference {
   map: string;
   intensity?: number;
   rotationDegrees?: number;
+  /**
+   * Channel values below zero (the ringing of lossy OpenEXR compression): 'error' refuses the map,
+   * 'zero' sets them to 0 and reports it. Default: the loader's `negativeTexels` option ('error').
+   */
+  negativeTexels?: 'error' | 'zero';
 }
 
 /**
@@ -196,18 +201,22 @@ function validate(value: unknown, r: SceneFileReader): WavefrontSceneFile {
 
   // `{ color }` (uniform radiance) or `{ map, intensity?, rotationDegrees? }` (an environment map file).
   const environment = (v: unknown, f: string): WavefrontEnvironmentInput | WavefrontEnvironmentMapReference => {
-    const o = r.object(v, f, ['color', 'map', 'intensity', 'rotationDegrees']);
+    const o = r.object(v, f, ['color', 'map', 'intensity', 'rotationDegrees', 'negativeTexels']);
     if (o.map !== undefined) {
-      if (o.color !== undefined) r.fail(join(f, 'color'), 'an environment is either { color } or { map, intensity?, rotationDegrees? }');
+      if (o.color !== undefined) r.fail(join(f, 'color'), 'an environment is either { color } or { map, intensity?, rotationDegrees?, negativeTexels? }');
       const map = r.string(o.map, join(f, 'map'));
       if (map === '') r.fail(join(f, 'map'), 'expects a file name or URL');
       return pick<WavefrontEnvironmentMapReference>(o, f, {
         map: () => map,
         intensity: (x, g) => r.number(x, g, { min: 0 }),
         rotationDegrees: (x, g) => r.number(x, g),
+        negativeTexels: (x, g) => {
+          if (x !== 'error' && x !== 'zero') r.fail(g, `expected "error" or "zero", got ${describe(x)}`);
+          return x;
+        },
       });
     }
-    for (const key of ['intensity', 'rotationDegrees'] as const) if (o[key] !== undefined) r.fail(join(f, key), 'applies to an environment map ({ map })');
+    for (const key of ['intensity', 'rotationDegrees', 'negativeTexels'] as const) if (o[key] !== undefined) r.fail(join(f, key), 'applies to an environment map ({ map })');
     if (o.color === undefined) r.fail(join(f, 'color'), 'is required (or give a map)');
     return { color: vec3(o.color, join(f, 'color')) };
   };

@@ -8,7 +8,9 @@ export interface ProgramSpec {
   /** Root module, e.g. `package::pathtracer::kernels::trace`. */
   readonly module: string;
   /** Which binding table the program's bindings come from. */
-  readonly bindings: 'pathTracer' | 'display';
+  readonly bindings: 'pathTracer' | 'display' | 'bvhBuild' | 'oidn';
+  /** WESL `@if` conditions the program is linked with (e.g. `f16`). */
+  readonly conditions?: Readonly<Record<string, boolean>>;
 }
 
 export const programSpecs = {
@@ -21,6 +23,24 @@ export const programSpecs = {
   denoise: { module: 'package::post::denoise::atrous', bindings: 'pathTracer' },
   resolve: { module: 'package::post::display::resolve', bindings: 'display' },
   present: { module: 'package::post::display::present', bindings: 'display' },
+  // The GPU BVH builder and refitter (src/accel/gpu-build/), one program per group of passes so
+  // each pipeline layout stays within the default 8 storage buffers per stage.
+  bvhMorton: { module: 'package::accel::gpu_build::morton', bindings: 'bvhBuild' },
+  bvhSort: { module: 'package::accel::gpu_build::radix_sort', bindings: 'bvhBuild' },
+  bvhScan: { module: 'package::accel::gpu_build::prefix_scan', bindings: 'bvhBuild' },
+  bvhHierarchy: { module: 'package::accel::gpu_build::lbvh_hierarchy', bindings: 'bvhBuild' },
+  bvhGather: { module: 'package::accel::gpu_build::gather', bindings: 'bvhBuild' },
+  bvhFit: { module: 'package::accel::gpu_build::lbvh_fit', bindings: 'bvhBuild' },
+  bvhEmit: { module: 'package::accel::gpu_build::lbvh_emit', bindings: 'bvhBuild' },
+  bvhSummary: { module: 'package::accel::gpu_build::lbvh_summary', bindings: 'bvhBuild' },
+  bvhRefit: { module: 'package::accel::gpu_build::refit', bindings: 'bvhBuild' },
+  oidnConv: { module: 'package::post::denoise::oidn::conv', bindings: 'oidn' },
+  oidnConvF16: { module: 'package::post::denoise::oidn::conv', bindings: 'oidn', conditions: { f16: true } },
+  oidnExposure: { module: 'package::post::denoise::oidn::exposure', bindings: 'oidn' },
+  oidnInput: { module: 'package::post::denoise::oidn::input', bindings: 'oidn' },
+  oidnInputF16: { module: 'package::post::denoise::oidn::input', bindings: 'oidn', conditions: { f16: true } },
+  oidnOutput: { module: 'package::post::denoise::oidn::output', bindings: 'oidn' },
+  oidnOutputF16: { module: 'package::post::denoise::oidn::output', bindings: 'oidn', conditions: { f16: true } },
 } as const satisfies Record<string, ProgramSpec>;
 
 export type ProgramName = keyof typeof programSpecs;

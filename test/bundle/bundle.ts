@@ -68,6 +68,8 @@ export async function createConsumerProject(): Promise<ConsumerProject> {
   cpSync(join(repoRoot, 'package.json'), join(pkg, 'package.json'));
   symlinkSync(pkgBuild.esmDir, join(pkg, 'dist/esm'), 'dir');
   symlinkSync(pkgBuild.browserDir, join(pkg, 'dist/browser'), 'dir');
+  // The OIDN weight modules the package's "#oidn-weights/*" imports name.
+  symlinkSync(join(repoRoot, 'weights'), join(pkg, 'weights'), 'dir');
   cpSync(consumerDir, join(dir, 'src'), { recursive: true });
   return {
     dir,

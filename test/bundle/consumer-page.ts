@@ -128,7 +128,7 @@ export async function checkNormalMappedGltf({ tab, errors }: ConsumerPage, outdi
 export async function checkWorker({ tab, errors }: ConsumerPage): Promise<void> {
   const report = await tab.evaluate(
     ({ size }) =>
-      (window as unknown as { renderInWorker(c: Element, o: object): Promise<{ inWorker: boolean; samples: number; rays: number; pixels: number[] }> }).renderInWorker(document.getElementById('c')!, { size, samplesPerPixel: 4 }),
+      (window as unknown as { renderInWorker(c: Element, o: object): Promise<{ inWorker: boolean; samples: number; rays: number; pixels: number[]; oidn: { denoiser: string; meanRatio: number; changedShare: number } }> }).renderInWorker(document.getElementById('c')!, { size, samplesPerPixel: 4 }),
     { size },
   );
   assert.equal(report.inWorker, true, 'the renderer ran in a worker (no document, importScripts present)');
@@ -144,5 +144,9 @@ export async function checkWorker({ tab, errors }: ConsumerPage): Promise<void> 
   let worst = 0;
   for (let i = 0; i < size * size; i++) for (let c = 0; c < 3; c++) worst = Math.max(worst, Math.abs(screen.data[i * screen.channels + c]! - report.pixels[4 * i + c]!));
   assert.ok(worst <= 1, `presented canvas equals the worker's readPixels within 1 (worst ${worst})`);
+  // OIDN ran in the worker: its weights chunk loaded there, the image changed, its energy stayed.
+  assert.equal(report.oidn.denoiser, 'oidn');
+  assert.ok(report.oidn.changedShare > 0.5, `OIDN changed ${(100 * report.oidn.changedShare).toFixed(0)}% of the pixels`);
+  assert.ok(Math.abs(report.oidn.meanRatio - 1) < 0.05, `OIDN kept the mean (ratio ${report.oidn.meanRatio.toFixed(4)})`);
   assert.deepEqual(errors, []);
 }

@@ -31,7 +31,7 @@ test('every flag, in both --flag value and --flag=value forms', () => {
     '--tone-mapping', 'aces', '--exposure=0.5', '--out', 'out/x.png', '--no-energy-compensation'];
   assert.deepEqual(parseRenderArgs(argv), {
     kind: 'render', scenePath: 'scene.json', width: 32, height: 24, spp: 16, sppPerFrame: 2, maxDepth: 5, seed: 4294967295,
-    toneMapping: 'aces', exposure: 0.5, exposureEv: 0, out: 'out/x.png', format: 'png', denoise: false, half: false, energyCompensation: false, aovs: [],
+    toneMapping: 'aces', exposure: 0.5, exposureEv: 0, out: 'out/x.png', format: 'png', denoise: false, half: false, energyCompensation: false, negativeTexels: 'zero', aovs: [],
   });
   // The scene may come after the flags, or after `--` (a name starting with a dash).
   assert.equal(render(['--spp', '1', 'a.json']).scenePath, 'a.json');
@@ -48,6 +48,13 @@ test('glTF scenes: --camera and --variant', () => {
   rejects(['render', '--variant', 'x'], '--variant', /glTF scenes/);
   rejects(['render', 'a.glb', '--camera='], '--camera', /expects a name/);
   rejects(['render', 'a.glb', '--variant'], '--variant', /expects a value/);
+});
+
+test('--bvh-build chooses where the BVH is built', () => {
+  assert.equal(render(['--bvh-build', 'gpu']).accelerationBuildMode, 'gpu');
+  assert.equal(render(['--bvh-build=cpu-upload']).accelerationBuildMode, 'cpu-upload');
+  assert.equal(render([]).accelerationBuildMode, undefined);
+  rejects(['render', '--bvh-build', 'fpga'], '--bvh-build', /cpu-upload or gpu/);
 });
 
 test('samples per frame never exceeds the target unless given', () => {
@@ -91,4 +98,29 @@ test('error messages carry the field prefix the CLI prints', () => {
     assert.ok(e instanceof GpuRendererError);
     assert.equal(`error [${e.code}] ${e.message}`, 'error [INVALID_OPTION] --spp: expected an integer, got "x"');
   }
+});
+
+test('camera flags: --orbit, --camera-position / --camera-target, --fov, with typed errors', () => {
+  assert.deepEqual(render(['m.glb', '--orbit', '30,-15']).orbit, { azimuthDegrees: 30, elevationDegrees: -15 });
+  assert.deepEqual(render(['m.glb', '--orbit=-90,90,2.5']).orbit, { azimuthDegrees: -90, elevationDegrees: 90, distance: 2.5 });
+  const placed = render(['s.json', '--camera-position', '1,2,3', '--camera-target=0,0.5,-1', '--fov', '30']);
+  assert.deepEqual([placed.cameraPosition, placed.cameraTarget, placed.fovYDegrees], [[1, 2, 3], [0, 0.5, -1], 30]);
+  assert.deepEqual(render(['--camera-position', '0,0,5']).cameraPosition, [0, 0, 5]);
+  rejects(['render', '--orbit', '30'], '--orbit', /azimuth,elevation/);
+  rejects(['render', '--orbit', '30,91'], '--orbit', /elevation must be within \[-90, 90\]/);
+  rejects(['render', '--orbit', '30,10,0'], '--orbit', /distance must be > 0/);
+  rejects(['render', '--orbit', '30,x'], '--orbit', /finite numbers/);
+  rejects(['render', '--camera-position', '1,2'], '--camera-position', /x,y,z/);
+  rejects(['render', '--camera-position', '1,2,NaN'], '--camera-position', /x,y,z/);
+  rejects(['render', '--camera-target', '1,2,3'], '--camera-target', /needs --camera-position/);
+  rejects(['render', '--orbit', '0,0', '--camera-position', '1,2,3'], '--orbit', /cannot be combined/);
+  rejects(['render', 'm.glb', '--camera', 'top', '--orbit', '0,0'], '--camera', /--orbit places one instead/);
+  rejects(['render', '--fov', '0'], '--fov', /\(0, 179\]/);
+  rejects(['render', '--fov', '180'], '--fov', /\(0, 179\]/);
+});
+
+test('--negative-texels: zero (default) or error', () => {
+  assert.equal(render([]).negativeTexels, 'zero');
+  assert.equal(render(['--negative-texels', 'error']).negativeTexels, 'error');
+  rejects(['render', '--negative-texels', 'clamp'], '--negative-texels', /zero or error/);
 });

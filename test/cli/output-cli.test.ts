@@ -65,6 +65,13 @@ test('output flags parse, and bad values are typed errors naming the flag', () =
   fails(['--noise', '0.1', '--spp', '4', '--min-spp', '8'], '--min-spp');
   fails(['--exposure-ev', 'bright'], '--exposure-ev');
   fails(['--denoise=yes'], '--denoise');
+  // --denoise takes an optional denoiser; a following scene path is not one.
+  assert.equal(parse(['--denoise', 'oidn']).denoise, 'oidn');
+  assert.equal(parse(['--denoise=atrous']).denoise, 'atrous');
+  const withScene = parse(['--denoise', 'scene.glb']);
+  assert.equal(withScene.denoise, true);
+  assert.equal(withScene.scenePath, 'scene.glb');
+  fails(['--denoise=bilateral'], '--denoise');
 });
 
 test('an OpenEXR with AOV layers round-trips through the CLI: the same values as the API renders', async () => {
@@ -134,9 +141,9 @@ test('.hdr output, --denoise keeping the raw beauty as a layer, --time and --noi
     [0.25, 0.5, 1].forEach((v, c) => assert.ok(Math.abs(image.data[c]! - v) <= v / 128, `channel ${c}: ${image.data[c]}`));
 
     const exr = join(dir, 'denoised.exr');
-    const b = await run(['--width', '16', '--height', '16', '--spp', '4', '--max-depth', '3', '--denoise', '--out', exr]);
+    const b = await run(['--width', '16', '--height', '16', '--spp', '4', '--max-depth', '3', '--denoise', 'atrous', '--out', exr]);
     assert.equal(b.code, 0, b.stderr);
-    assert.match(b.stderr, /denoised/);
+    assert.match(b.stderr, /denoised \(a-trous\)/);
     const file = readExrChannels(new Uint8Array(await readFile(exr)));
     let differs = 0;
     file.channels.G!.values.forEach((v, p) => (differs += Math.abs(v - file.channels['raw.G']!.values[p]!) > 1e-4 ? 1 : 0));

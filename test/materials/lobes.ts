@@ -213,6 +213,8 @@ function extensionCases(): LobeCase<GltfBsdfMaterial>[] {
       params: [
         { name: 'rough glass entering', value: { baseColor: [1, 1, 1], metallic: 0, roughness: 0.5, ior: 1.5, transmission: { factor: 1, refractive: true } } },
         { name: 'rough tinted glass leaving', value: { baseColor: [0.9, 0.8, 0.6], metallic: 0, roughness: 0.4, ior: 1 / 1.5, transmission: { factor: 1, refractive: true } } },
+        // A thin wall of ior 1.2: its transmitted lobe's slopes scale by 0.4 (prisms of index 1.2).
+        { name: 'thin wall, ior 1.2', value: { baseColor: [0.8, 0.9, 1], metallic: 0, roughness: 0.6, ior: 1.2, transmission: { factor: 1, refractive: false } } },
         {
           name: 'thin half-transmissive, KHR specular',
           value: { baseColor: [0.9, 0.6, 0.3], metallic: 0.2, roughness: 0.45, ior: 1.5, transmission: { factor: 0.7, refractive: false }, specular: { factor: 0.8, color: [1, 0.9, 1.4] } },

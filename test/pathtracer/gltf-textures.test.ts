@@ -200,9 +200,9 @@ test('normal texture with scale, MikkTSpace tangents from the loader: the shadin
   assert.ok(scene.meshes[0]!.tangents !== undefined, 'tangents generated');
   const { normal } = await renderScene(scene, { width: 8, height: 8, aovs: true, environment: { color: [1, 1, 1] } }, 2);
   // glTF 2.0 section 3.9.3: n = normalize(T (m.x s) + B (m.y s) + N m.z), T = dP/du = +x and
-  // B = dP/dv = -y (v grows downwards), so n = normalize(m.x s, -m.y s, m.z).
+  // B = -dP/dv = +y (v grows downwards; a normal map's +Y is up), so n = normalize(m.x s, m.y s, m.z).
   const m = texel.slice(0, 3).map((b) => (b / 255) * 2 - 1);
-  const n = [0.5 * m[0]!, -0.5 * m[1]!, m[2]!];
+  const n = [0.5 * m[0]!, 0.5 * m[1]!, m[2]!];
   const len = Math.hypot(...n);
   for (let i = 0; i < 64; i++) {
     for (let c = 0; c < 3; c++) assert.ok(Math.abs(normal![4 * i + c]! - n[c]! / len) < 1e-3, `pixel ${i} channel ${c}: ${normal![4 * i + c]} vs ${n[c]! / len}`);

@@ -274,13 +274,26 @@ test('vertex streams: interpolated normals, degenerate normals, and normal maps 
   const tangents = (w: number): number[] => Array.from({ length: 4 }, () => [1, 0, 0, w]).flat();
   const plus = await meanNormal([square(material, { tangents: tangents(1) })], [normalMap]);
   const minus = await meanNormal([square(material, { tangents: tangents(-1) })], [normalMap]);
-  // No tangents: T = dp/du = +x and the sign from dp/dv = -y (v grows downwards), as tangent w = -1.
+  // No tangents: T = dp/du = +x and the bitangent towards decreasing v, +y (v grows downwards and a
+  // normal map's +Y is up), as tangent w = +1.
   const derived = await meanNormal([square(material)], [normalMap]);
   for (let i = 0; i < SIZE * SIZE; i++) {
     for (let c = 0; c < 3; c++) {
       assert.ok(Math.abs(plus[4 * i + c]! - mapped(1)[c]!) < 1e-3, `w = +1 channel ${c}: ${plus[4 * i + c]} vs ${mapped(1)[c]}`);
       assert.ok(Math.abs(minus[4 * i + c]! - mapped(-1)[c]!) < 1e-3, `w = -1 channel ${c}: ${minus[4 * i + c]} vs ${mapped(-1)[c]}`);
-      assert.ok(Math.abs(derived[4 * i + c]! - mapped(-1)[c]!) < 1e-3, `derived channel ${c}: ${derived[4 * i + c]} vs ${mapped(-1)[c]}`);
+      assert.ok(Math.abs(derived[4 * i + c]! - mapped(1)[c]!) < 1e-3, `derived channel ${c}: ${derived[4 * i + c]} vs ${mapped(1)[c]}`);
+    }
+  }
+  // Other uv layouts, derived: a quarter turn (u grows along +y, v along +x: T = +y, B = -x) and a
+  // mirror in v (v grows upwards: T = +x, B = -y).
+  const unit = (v: number[]): number[] => v.map((c) => c / Math.hypot(...v));
+  for (const { name, uvs, want } of [
+    { name: 'quarter turn', uvs: [0, 0, 0, 1, 1, 1, 1, 0], want: unit([-m[1]!, m[0]!, m[2]!]) },
+    { name: 'mirrored v', uvs: [0, 0, 1, 0, 1, 1, 0, 1], want: unit([m[0]!, -m[1]!, m[2]!]) },
+  ]) {
+    const got = await meanNormal([square(material, { uvs })], [normalMap]);
+    for (let i = 0; i < SIZE * SIZE; i++) {
+      for (let c = 0; c < 3; c++) assert.ok(Math.abs(got[4 * i + c]! - want[c]!) < 1e-3, `derived, ${name}, channel ${c}: ${got[4 * i + c]} vs ${want[c]}`);
     }
   }
 });

@@ -6,6 +6,7 @@
  */
 import type { Camera } from '@gltf-transform/core';
 import type { WavefrontCameraInput } from '../../scene/types.ts';
+import { frameBounds, type SceneBounds } from '../../scene/camera-framing.ts';
 import { normalize, transformDirection, type Mat4 } from './matrix.ts';
 
 /** A camera placed in the scene by a node. */
@@ -32,20 +33,13 @@ export function cameraFromNode(camera: Camera, world: Mat4): WavefrontCameraInpu
 }
 
 /** Axis-aligned world bounds. */
-export interface GltfBounds {
-  min: [number, number, number];
-  max: [number, number, number];
-}
-
-const FRAMING_FOV_DEGREES = 45;
+export type GltfBounds = SceneBounds;
 
 /**
- * A perspective camera on +Z of the bounds' centre, looking at it with a 45 degree vertical field
- * of view, at the distance where the bounding sphere just fits that field vertically.
+ * The camera of an asset without one: `frameBounds` (scene/camera-framing.ts) with its defaults, a
+ * raised three-quarter view of the bounds (azimuth 30 degrees from +Z towards +X, elevation 25,
+ * 45 degree vertical field of view) at the nearest distance where the whole box is in view.
  */
-export function framingCamera(bounds: GltfBounds | undefined): WavefrontCameraInput {
-  const center = bounds === undefined ? [0, 0, 0] : bounds.min.map((v, i) => (v + bounds.max[i]) / 2);
-  const radius = bounds === undefined ? 1 : Math.hypot(...bounds.max.map((v, i) => v - bounds.min[i])) / 2 || 1;
-  const distance = radius / Math.sin(((FRAMING_FOV_DEGREES / 2) * Math.PI) / 180);
-  return { type: 'perspective', position: [center[0], center[1], center[2] + distance], target: center, up: [0, 1, 0], fovYDegrees: FRAMING_FOV_DEGREES };
+export function framingCamera(bounds: GltfBounds | undefined, aspectRatio = 1): WavefrontCameraInput {
+  return frameBounds(bounds, { aspectRatio });
 }

@@ -1,7 +1,8 @@
 /**
  * Which glTF extensions the loader honours. Every Khronos/EXT extension that @gltf-transform
  * implements is registered for reading; this table says which of them the renderer's scene can
- * express, so that a file *requiring* one it cannot is rejected instead of being drawn wrongly.
+ * express, so that a file *requiring* one it cannot is rejected instead of being drawn wrongly,
+ * and one merely *using* it gets a warning that it is ignored.
  */
 
 /** Extensions whose content the loader maps (or that carry no rendering content at all). */
@@ -14,7 +15,9 @@ export const SUPPORTED_EXTENSIONS: ReadonlySet<string> = new Set([
   'KHR_accessor_float16',
   'KHR_accessor_float64',
   'KHR_texture_transform',
+  'KHR_texture_basisu',
   'EXT_texture_webp',
+  'EXT_texture_avif',
   'KHR_materials_emissive_strength',
   'KHR_materials_ior',
   'KHR_materials_specular',
@@ -27,21 +30,13 @@ export const SUPPORTED_EXTENSIONS: ReadonlySet<string> = new Set([
   'KHR_materials_iridescence',
   'KHR_materials_diffuse_transmission',
   'KHR_materials_variants',
+  'KHR_materials_pbrSpecularGlossiness',
+  'KHR_materials_unlit',
   'KHR_lights_punctual',
   'KHR_node_visibility',
-  // Metadata only: nothing to render.
+  // Metadata only: nothing to render (FB_ngon_encoding says how the triangles came from polygons).
   'KHR_xmp_json_ld',
+  'FB_ngon_encoding',
   'EXT_mesh_features',
   'EXT_structural_metadata',
 ]);
-
-/** Texture source extensions whose images cannot be decoded here (no KTX2/Basis or AVIF decoder). */
-export const UNSUPPORTED_TEXTURE_EXTENSIONS: ReadonlySet<string> = new Set(['KHR_texture_basisu', 'EXT_texture_avif']);
-
-/** Optional extensions that are read but not representable; their use is reported as a warning. */
-export const IGNORED_OPTIONAL_EXTENSIONS: Readonly<Record<string, string>> = {
-  KHR_materials_unlit: 'unlit materials are shaded as their metallic-roughness fallback',
-  KHR_materials_pbrSpecularGlossiness: 'specular-glossiness materials are shaded as their metallic-roughness fallback',
-  KHR_texture_basisu: 'KTX2/Basis textures cannot be decoded; their fallback images are used where present',
-  EXT_texture_avif: 'AVIF textures cannot be decoded; their fallback images are used where present',
-};

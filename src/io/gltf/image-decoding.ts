@@ -1,13 +1,16 @@
 /**
  * Encoded image bytes -> RGBA8, top row first (WavefrontImageInput). The format is sniffed from the
  * signature, not trusted from mimeType. Node decodes with pure-JS/wasm packages (fast-png, jpeg-js,
- * webp-wasm, all loaded on first use); browsers with createImageBitmap and OffscreenCanvas use the
- * platform decoders instead (feature-detected; a 2D canvas stores premultiplied alpha, so colours
- * of nearly transparent texels lose precision there).
+ * webp-wasm, @jsquash/avif, all loaded on first use); browsers with createImageBitmap and
+ * OffscreenCanvas use the platform decoders instead (feature-detected; a 2D canvas stores
+ * premultiplied alpha, so colours of nearly transparent texels lose precision there). KTX2 is
+ * decoded the same way everywhere (codecs/ktx2.ts: Basis Universal transcoder, loaded on first use).
  */
 import type { WavefrontImageInput } from '../../scene/types.ts';
 import { failGltf } from './errors.ts';
 import { isNodeRuntime } from './resources.ts';
+import { checkImageHeader } from '../image-headers.ts';
+import { defaultResourcePolicy, type ResolvedResourcePolicy } from '../resource-policy.ts';
 
 export type ImageFormat = 'png' | 'jpeg' | 'webp' | 'ktx2' | 'avif' | 'unknown';
 
@@ -28,15 +31,20 @@ export interface DecodedImage {
   notes: string[];
 }
 
-/** Decodes `bytes`; `field` names the glTF image for errors. KTX2/AVIF must be filtered out first. */
-export async function decodeImage(bytes: Uint8Array, field: string): Promise<DecodedImage> {
+/**
+ * Decodes `bytes`; `field` names the glTF image for errors. The header's size is checked against
+ * `policy` before a decoder allocates anything.
+ */
+export async function decodeImage(bytes: Uint8Array, field: string, policy: ResolvedResourcePolicy = defaultResourcePolicy): Promise<DecodedImage> {
+  checkImageHeader(bytes, { code: 'INVALID_GLTF', field }, policy);
   const format = sniffImageFormat(bytes);
-  if (format === 'unknown') failGltf(field, 'the image is not PNG, JPEG or WebP data');
-  if (format === 'ktx2' || format === 'avif') failGltf(field, `${format.toUpperCase()} images cannot be decoded`);
+  if (format === 'unknown') failGltf(field, 'the image is not PNG, JPEG, WebP, AVIF or KTX2 data');
   try {
+    if (format === 'ktx2') return { image: await (await import('./codecs/ktx2.ts')).decodeKtx2(bytes), notes: [] };
     if (!isNodeRuntime() && typeof createImageBitmap === 'function' && typeof OffscreenCanvas === 'function') return { image: await decodeWithBrowser(bytes, format), notes: [] };
     if (format === 'png') return await decodePng(bytes);
     if (format === 'jpeg') return { image: await decodeJpeg(bytes), notes: [] };
+    if (format === 'avif') return { image: await (await import('./codecs/avif.ts')).decodeAvif(bytes), notes: [] };
     return { image: await decodeWebp(bytes), notes: [] };
   } catch (error) {
     failGltf(field, `the ${format.toUpperCase()} image does not decode: ${(error as Error).message}`, error);
@@ -77,7 +85,8 @@ async function decodePng(bytes: Uint8Array): Promise<DecodedImage> {
   if (channels === 4 && depth === 8) return { image: { width, height, data: new Uint8Array(decoded.data.buffer, decoded.data.byteOffset, width * height * 4) }, notes };
   const samples = unpackSamples(decoded.data, width, height, channels, depth);
   const max = 2 ** depth - 1;
-  if (depth === 16) notes.push('16-bit PNG reduced to 8 bits per channel');
+  // 16-bit channels are rounded to 8 bits, the precision of the renderer's textures (as browsers'
+  // decoders do too): not worth a warning, a rounding well below what the slots resolve.
   const to8 = (v: number): number => (depth === 8 ? v : Math.round((v * 255) / max));
   const key = decoded.transparency;
   for (let p = 0; p < width * height; p++) {

@@ -13,12 +13,14 @@ import type {
   EmissiveStrength,
   IOR,
   Iridescence,
+  PBRSpecularGlossiness,
   Sheen,
   Specular,
   Transmission,
+  Unlit,
   Volume,
 } from '@gltf-transform/extensions';
-import type { WavefrontMaterialInput, WavefrontTextureRefInput } from '../../scene/types.ts';
+import type { WavefrontImageInput, WavefrontMaterialInput, WavefrontTextureRefInput } from '../../scene/types.ts';
 import type { TextureTable } from './textures.ts';
 
 type Slot = keyof WavefrontMaterialInput;
@@ -107,6 +109,8 @@ export async function mapMaterial(material: Material, at: string, table: Texture
     out.anisotropyRotation = anisotropy.getAnisotropyRotation();
     await slot('anisotropyTexture', anisotropy.getAnisotropyTexture(), anisotropy.getAnisotropyTextureInfo(), `${ext('KHR_materials_anisotropy')}/anisotropyTexture`);
   }
+  const specGloss = material.getExtension<PBRSpecularGlossiness>('KHR_materials_pbrSpecularGlossiness');
+  if (specGloss) await applySpecularGlossiness(out, specGloss, ext('KHR_materials_pbrSpecularGlossiness'), table);
   const diffuse = material.getExtension<DiffuseTransmission>('KHR_materials_diffuse_transmission');
   if (diffuse) {
     const e = ext('KHR_materials_diffuse_transmission');
@@ -115,7 +119,78 @@ export async function mapMaterial(material: Material, at: string, table: Texture
     await slot('diffuseTransmissionTexture', diffuse.getDiffuseTransmissionTexture(), diffuse.getDiffuseTransmissionTextureInfo(), `${e}/diffuseTransmissionTexture`);
     await slot('diffuseTransmissionColorTexture', diffuse.getDiffuseTransmissionColorTexture(), diffuse.getDiffuseTransmissionColorTextureInfo(), `${e}/diffuseTransmissionColorTexture`);
   }
+  if (material.getExtension<Unlit>('KHR_materials_unlit')) makeUnlit(out);
   return out;
+}
+
+/**
+ * KHR_materials_pbrSpecularGlossiness as metallic-roughness with KHR_materials_specular (the
+ * conversion glTF-Transform's `metalRough` makes): diffuse becomes the base colour of a dielectric
+ * (metallic 0), the specular colour becomes the F0 colour (specularColorFactor and
+ * specularColorTexture, with ior 0, KHR_materials_ior's specular-glossiness mode where the Fresnel
+ * term reaches that colour at normal incidence) and roughness is 1 - glossiness, baked per texel
+ * into a roughness image when the glossiness comes from the texture's alpha.
+ */
+async function applySpecularGlossiness(out: WavefrontMaterialInput, specGloss: PBRSpecularGlossiness, at: string, table: TextureTable): Promise<void> {
+  const glossiness = specGloss.getGlossinessFactor();
+  out.baseColorFactor = [...specGloss.getDiffuseFactor()];
+  delete out.baseColorTexture;
+  delete out.metallicRoughnessTexture;
+  const diffuseTexture = await table.reference(specGloss.getDiffuseTexture(), specGloss.getDiffuseTextureInfo(), `${at}/diffuseTexture`);
+  if (diffuseTexture !== undefined) out.baseColorTexture = diffuseTexture;
+  out.metallicFactor = 0;
+  out.roughnessFactor = 1 - glossiness;
+  out.ior = 0;
+  out.specularFactor = 1;
+  out.specularColorFactor = [...specGloss.getSpecularFactor()];
+  delete out.specularTexture;
+  delete out.specularColorTexture;
+  const sgAt = `${at}/specularGlossinessTexture`;
+  const sgTexture = specGloss.getSpecularGlossinessTexture();
+  const sgInfo = specGloss.getSpecularGlossinessTextureInfo();
+  const specularColor = await table.reference(sgTexture, sgInfo, sgAt);
+  if (specularColor === undefined) return;
+  out.specularColorTexture = specularColor;
+  const roughness = await table.derivedReference(sgTexture, sgInfo, sgAt, `roughness from glossiness x ${glossiness}`, (image) => roughnessFromGlossiness(image, glossiness));
+  if (roughness !== undefined) {
+    out.metallicRoughnessTexture = roughness;
+    out.roughnessFactor = 1;
+  }
+}
+
+/**
+ * A metallic-roughness image (G = roughness, B = metallic = 0) of a specular-glossiness texture:
+ * roughness = 1 - glossinessFactor * alpha, both linear.
+ */
+export function roughnessFromGlossiness(image: WavefrontImageInput, glossinessFactor: number): WavefrontImageInput {
+  const data = new Uint8Array(image.width * image.height * 4);
+  for (let p = 0; p < data.length; p += 4) {
+    data[p + 1] = Math.round(255 * (1 - (glossinessFactor * image.data[p + 3]!) / 255));
+    data[p + 3] = 255;
+  }
+  return { width: image.width, height: image.height, data };
+}
+
+/**
+ * KHR_materials_unlit as the physical surface it describes: one that emits its base colour (factor,
+ * texture; alpha kept for blending and masking) and scatters nothing (black base colour, no
+ * specular reflection, no transmission). Under light it shows exactly its base colour, and it
+ * lights its surroundings as any emitter does.
+ */
+function makeUnlit(out: WavefrontMaterialInput): void {
+  const [r, g, b] = out.baseColorFactor ?? [1, 1, 1];
+  const a = out.baseColorFactor?.[3] ?? 1;
+  out.emissiveFactor = [r!, g!, b!];
+  out.emissiveStrength = 1;
+  if (out.baseColorTexture !== undefined) out.emissiveTexture = out.baseColorTexture;
+  else delete out.emissiveTexture;
+  out.baseColorFactor = [0, 0, 0, a];
+  out.metallicFactor = 0;
+  out.roughnessFactor = 1;
+  out.specularFactor = 0;
+  for (const key of ['metallicRoughnessTexture', 'normalTexture', 'occlusionTexture', 'specularTexture', 'specularColorTexture', 'transmissionFactor', 'transmissionTexture', 'clearcoatFactor', 'sheenColorFactor', 'iridescenceFactor', 'diffuseTransmissionFactor'] as const) {
+    delete out[key];
+  }
 }
 
 /** The glTF default material (section 3.9.6): every property at its default. */

@@ -17,7 +17,8 @@ import type {
   WavefrontWrapMode,
 } from '../../scene/types.ts';
 import { failGltf, pointer } from './errors.ts';
-import { decodeImage, sniffImageFormat } from './image-decoding.ts';
+import { decodeImage } from './image-decoding.ts';
+import type { ResolvedResourcePolicy } from '../resource-policy.ts';
 
 const WRAP: Readonly<Record<number, WavefrontWrapMode>> = { 10497: 'repeat', 33071: 'clamp-to-edge', 33648: 'mirrored-repeat' };
 const MAG: Readonly<Record<number, WavefrontMagFilter>> = { 9728: 'nearest', 9729: 'linear' };
@@ -52,18 +53,22 @@ export function textureTransform(info: TextureInfo): WavefrontTextureTransformIn
 export class TextureTable {
   readonly images: WavefrontImageInput[] = [];
   readonly textures: WavefrontTextureInput[] = [];
-  private readonly imageIndex = new Map<Texture, Promise<number | undefined>>();
+  private readonly imageIndex = new Map<Texture, Promise<number>>();
+  /** Images computed from decoded ones (derivedReference), by the image's index and the derivation's key. */
+  private readonly derivedIndex = new Map<string, number>();
   private readonly textureIndex = new Map<string, number>();
   private readonly allImages: readonly Texture[];
   private readonly warnings: string[];
+  private readonly policy: ResolvedResourcePolicy | undefined;
 
-  constructor(allImages: readonly Texture[], warnings: string[]) {
+  constructor(allImages: readonly Texture[], warnings: string[], policy?: ResolvedResourcePolicy) {
     this.allImages = allImages;
     this.warnings = warnings;
+    this.policy = policy;
   }
 
-  /** Decodes the image once; undefined when its format cannot be decoded (KTX2, AVIF). */
-  private image(texture: Texture): Promise<number | undefined> {
+  /** Decodes the image once. */
+  private image(texture: Texture): Promise<number> {
     let pending = this.imageIndex.get(texture);
     if (pending === undefined) {
       pending = this.decode(texture);
@@ -72,30 +77,53 @@ export class TextureTable {
     return pending;
   }
 
-  private async decode(texture: Texture): Promise<number | undefined> {
+  private async decode(texture: Texture): Promise<number> {
     const at = pointer('images', this.allImages.indexOf(texture));
     const bytes = texture.getImage();
     // Unreadable external images were rejected while reading the asset; this is a Document passed
     // in whose image was never loaded.
     if (bytes === null) failGltf(at, `the image has no data${texture.getURI() ? ` (${texture.getURI()})` : ''}`);
-    const format = sniffImageFormat(bytes);
-    if (format === 'ktx2' || format === 'avif') {
-      this.warnings.push(`${at}: ${format.toUpperCase()} images cannot be decoded; the material slots using it are left without a texture`);
-      return undefined;
-    }
-    const { image, notes } = await decodeImage(bytes, at);
+    const { image, notes } = await decodeImage(bytes, at, this.policy);
     for (const note of notes) this.warnings.push(`${at}: ${note}`);
     this.images.push(image);
     return this.images.length - 1;
   }
 
-  /** The reference a material slot makes to `texture` through `info`, or undefined (warned) when it cannot. */
+  /** The reference a material slot makes to `texture` through `info`; undefined without one, or (warned) when it cannot. */
   async reference(texture: Texture | null, info: TextureInfo | null, slotAt: string): Promise<WavefrontTextureRefInput | undefined> {
+    return this.referenceTo(texture, info, slotAt, undefined);
+  }
+
+  /**
+   * Like `reference`, to an image computed from the decoded image by `derive` (same size, RGBA8,
+   * top row first), made once per image and `key`: e.g. a roughness channel baked from glossiness.
+   */
+  async derivedReference(
+    texture: Texture | null,
+    info: TextureInfo | null,
+    slotAt: string,
+    key: string,
+    derive: (source: WavefrontImageInput) => WavefrontImageInput,
+  ): Promise<WavefrontTextureRefInput | undefined> {
+    return this.referenceTo(texture, info, slotAt, { key, derive });
+  }
+
+  private async referenceTo(
+    texture: Texture | null,
+    info: TextureInfo | null,
+    slotAt: string,
+    derived: { key: string; derive: (source: WavefrontImageInput) => WavefrontImageInput } | undefined,
+  ): Promise<WavefrontTextureRefInput | undefined> {
     if (texture === null || info === null) return undefined;
-    const image = await this.image(texture);
-    if (image === undefined) {
-      this.warnings.push(`${slotAt}: texture dropped (its image cannot be decoded)`);
-      return undefined;
+    let image = await this.image(texture);
+    if (derived !== undefined) {
+      const derivedKey = `${image}|${derived.key}`;
+      let index = this.derivedIndex.get(derivedKey);
+      if (index === undefined) {
+        index = this.images.push(derived.derive(this.images[image]!)) - 1;
+        this.derivedIndex.set(derivedKey, index);
+      }
+      image = index;
     }
     const transform = textureTransform(info);
     const texCoord = transform?.texCoord ?? info.getTexCoord();

@@ -17,6 +17,14 @@ export const deltaAlpha = 1e-3;
 
 export const isSmooth = (a: Alphas): boolean => Math.max(a.x, a.y) < deltaAlpha;
 
+/** The least alpha of a lobe that is not smooth, on either axis (pbrt-v4 TrowbridgeReitzDistribution); GGX_MIN_ALPHA in WGSL. */
+export const minAlpha = 1e-4;
+
+/** The alphas a lobe works with: unchanged when smooth, else each at least minAlpha (ggx-reflection.wesl lobe_alphas). */
+export function lobeAlphas(a: Alphas): Alphas {
+  return isSmooth(a) ? a : { x: Math.max(a.x, minAlpha), y: Math.max(a.y, minAlpha) };
+}
+
 export interface LobeValue {
   f: number;
   pdf: number;
@@ -31,7 +39,8 @@ export function lambertTransmission(wo: Vec3, wi: Vec3): LobeValue {
 }
 
 /** GGX reflection without Fresnel, D V (glTF Appendix B specular_brdf), VNDF-sampled; anisotropic. */
-export function ggxReflection(a: Alphas, wo: Vec3, wi: Vec3): LobeValue {
+export function ggxReflection(alphas: Alphas, wo: Vec3, wi: Vec3): LobeValue {
+  const a = lobeAlphas(alphas);
   if (wo[2] <= 0 || wi[2] <= 0 || isSmooth(a)) return none;
   const h = normalize([wo[0] + wi[0], wo[1] + wi[1], wo[2] + wi[2]]);
   const f = (ggxDAniso(h, a) * ggxG2(wo, wi, a)) / (4 * wo[2] * wi[2]);
@@ -56,7 +65,8 @@ function refractionHalfVector(wo: Vec3, wi: Vec3, eta: number): Vec3 | null {
  * radiance scaling 1 / eta^2 of transmitted radiance, section 9.5.2). The microfacet normal is
  * VNDF-sampled, then reflection or refraction is chosen with probability F(wo.h).
  */
-export function ggxDielectric(a: Alphas, eta: number, wo: Vec3, wi: Vec3): LobeValue {
+export function ggxDielectric(alphas: Alphas, eta: number, wo: Vec3, wi: Vec3): LobeValue {
+  const a = lobeAlphas(alphas);
   if (wo[2] <= 0 || wi[2] === 0 || isSmooth(a) || eta === 1) return none;
   const reflect = wi[2] > 0;
   const etap = reflect ? 1 : eta;
@@ -80,7 +90,8 @@ export function ggxDielectric(a: Alphas, eta: number, wo: Vec3, wi: Vec3): LobeV
  * mirror image of wi through the surface (the half vector H_T of the extension's notes). One VNDF
  * sample serves both; reflection is chosen with probability F(wo.h).
  */
-export function ggxThinDielectric(a: Alphas, eta: number, wo: Vec3, wi: Vec3): LobeValue {
+export function ggxThinDielectric(alphas: Alphas, eta: number, wo: Vec3, wi: Vec3): LobeValue {
+  const a = lobeAlphas(alphas);
   if (wo[2] <= 0 || wi[2] === 0 || isSmooth(a)) return none;
   const reflect = wi[2] > 0;
   const w = reflect ? wi : mirrorZ(wi);

@@ -52,6 +52,21 @@ export function sampleGgxVisibleNormal(wo: Vec3, a: Alphas, u0: number, u1: numb
   return normalize([hs[0] * a.x, hs[1] * a.y, Math.max(hs[2], 0)]);
 }
 
+/**
+ * The inverse of sampleGgxVisibleNormal: the point (u0, u1) of the unit square that samples the
+ * visible normal h. In the stretched configuration h_std = c + wo_std with c on the unit sphere, so
+ * c is wo_std reflected about h_std's direction.
+ */
+export function ggxVisibleNormalSamplePoint(wo: Vec3, a: Alphas, h: Vec3): [number, number] {
+  const ws = normalize([wo[0] * a.x, wo[1] * a.y, wo[2]]);
+  const n = normalize([h[0] / a.x, h[1] / a.y, h[2]]);
+  const k = 2 * dot(n, ws);
+  const c: Vec3 = [k * n[0] - ws[0], k * n[1] - ws[1], k * n[2] - ws[2]];
+  let u0 = Math.atan2(c[1], c[0]) / (2 * Math.PI);
+  if (u0 < 0) u0 += 1;
+  return [u0, Math.min(1, Math.max(0, 1 - (c[2] + ws[2]) / (1 + ws[2])))];
+}
+
 /** Mirror reflection of wo about the unit normal n. */
 export function reflect(wo: Vec3, n: Vec3): Vec3 {
   const c = 2 * dot(wo, n);

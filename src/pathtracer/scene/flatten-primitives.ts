@@ -1,4 +1,15 @@
-import { ALPHA_MODE_BLEND, ALPHA_MODE_MASK, INDEX_NONE, PRIMITIVE_ALPHA_SHIFT, PRIMITIVE_FLAG_ALPHA, PRIMITIVE_SHAPE_BOX, PRIMITIVE_SHAPE_SPHERE, PRIMITIVE_SHAPE_TRIANGLE } from '../../gpu-layout/constants.ts';
+import {
+  ALPHA_MODE_BLEND,
+  ALPHA_MODE_MASK,
+  INDEX_NONE,
+  PRIMITIVE_ALPHA_SHIFT,
+  PRIMITIVE_FLAG_ALPHA,
+  PRIMITIVE_FLAG_MIRRORED,
+  PRIMITIVE_FLAG_SINGLE_SIDED,
+  PRIMITIVE_SHAPE_BOX,
+  PRIMITIVE_SHAPE_SPHERE,
+  PRIMITIVE_SHAPE_TRIANGLE,
+} from '../../gpu-layout/constants.ts';
 import { alphaPrimitiveLayout } from '../../gpu-layout/records.ts';
 import { allocateStructArray, writeStruct } from '../../gpu-layout/struct-layout.ts';
 import type { NormalizedInstance } from '../../scene/instance.ts';
@@ -70,6 +81,9 @@ export function flattenPrimitives(scene: NormalizedScene, infoOffset: TextureInf
     const mesh = scene.meshes[inst.mesh]!;
     const material = scene.materials[instanceMaterial(scene, inst)]!;
     const alpha = material.alphaMode !== 'OPAQUE';
+    // Back-face culling of camera rays (bvh-traversal.wesl) needs the material's sidedness and the
+    // instance's handedness.
+    const sides = (material.doubleSided ? 0 : PRIMITIVE_FLAG_SINGLE_SIDED) | (inst.determinant < 0 ? PRIMITIVE_FLAG_MIRRORED : 0);
     const texture = material.baseColorTexture;
     const uvs = texture ? (texture.texCoord === 1 ? mesh.uvs1 : mesh.uvs) : null;
     for (let t = 0; t < mesh.triangleCount; t++, k++) {
@@ -89,7 +103,7 @@ export function flattenPrimitives(scene: NormalizedScene, infoOffset: TextureInf
       }
       instance[k] = instanceIndex;
       primitive[k] = t;
-      shape[k] = PRIMITIVE_SHAPE_TRIANGLE;
+      shape[k] = PRIMITIVE_SHAPE_TRIANGLE | sides;
       if (alpha) {
         const vertex = (c: number): number => mesh.indices[3 * t + c]!;
         const uv = (c: number): [number, number] => (uvs && texture ? applyTextureTransform(texture.transform, uvs[2 * vertex(c)]!, uvs[2 * vertex(c) + 1]!) : [0, 0]);
@@ -104,7 +118,7 @@ export function flattenPrimitives(scene: NormalizedScene, infoOffset: TextureInf
           alphaFactor: material.baseColor[3],
           texture: texture && uvs ? infoOffset(texture.texture, true) : INDEX_NONE,
         });
-        shape[k] = PRIMITIVE_SHAPE_TRIANGLE | PRIMITIVE_FLAG_ALPHA | (alphaIndex << PRIMITIVE_ALPHA_SHIFT);
+        shape[k] = PRIMITIVE_SHAPE_TRIANGLE | sides | PRIMITIVE_FLAG_ALPHA | (alphaIndex << PRIMITIVE_ALPHA_SHIFT);
         alphaIndex++;
       }
     }

@@ -1,13 +1,13 @@
-import { buildBvhAsync } from '../../accel/bvh-builder.ts';
+import { buildBvhAsync, type BvhBuildResult } from '../../accel/bvh-builder.ts';
 import { bvhParentLinks, packPrimitives, packWavefrontBvhNodes } from '../../accel/triangle-packing.ts';
 import { Vec4Heap } from '../../gpu-layout/vec4-heap.ts';
 import { buildTextureAtlas, type TextureAtlas } from '../../materials/textures/texture-atlas.ts';
 import type { AtlasLimits } from '../../materials/textures/atlas-packer.ts';
 import type { NormalizedScene } from '../../scene/normalize-scene.ts';
-import { flattenPrimitives } from './flatten-primitives.ts';
+import { flattenPrimitives, type FlatPrimitives } from './flatten-primitives.ts';
 import { buildLightTable } from './light-table.ts';
 import { packInstances } from './pack-instances.ts';
-import { packMaterialTables, packMaterials, planMaterials, textureUsages, type MaterialFeatureUses } from './pack-materials.ts';
+import { packMaterialTables, packMaterials, planMaterials, textureUsages, type MaterialFeatureUses, type TextureInfoOffsets } from './pack-materials.ts';
 import { packVertexStreams } from './pack-vertices.ts';
 
 /** Everything the path tracer uploads for a scene, packed on the CPU. */
@@ -27,6 +27,13 @@ export interface PreparedScene {
   primitiveCount: number;
   triangleCount: number;
   bvh: { nodeCount: number; depth: number; sahCost: number; buildTimeMs: number };
+  /**
+   * How the BVH is built. 'cpu-upload': `bvhNodes`, `bvhParents` and `primitives` (in BVH order,
+   * slot s = flat primitive order[s]) are the CPU build's, ready to upload. 'gpu': `primitives`
+   * holds the records in scene order for the GPU builder (src/accel/gpu-build/), `bvhNodes` and
+   * `bvhParents` are empty and `bvh` is filled in once the GPU has built the tree.
+   */
+  acceleration: { mode: AccelerationBuildMode; order: Uint32Array | null };
   sceneCenter: [number, number, number];
   sceneRadius: number;
   /** Which optional shader features the scene needs (the rest are compiled out). */
@@ -34,7 +41,22 @@ export interface PreparedScene {
   warnings: string[];
 }
 
-export async function prepareScene(scene: NormalizedScene, limits: AtlasLimits, options: { signal?: AbortSignal; energyCompensation?: boolean } = {}): Promise<PreparedScene> {
+/** Where the BVH is built: on the CPU and uploaded (default), or on the GPU (src/accel/gpu-build/). */
+export type AccelerationBuildMode = 'cpu-upload' | 'gpu';
+
+/** The material half of a prepared scene: the material heap and the texture atlas, independent of geometry. */
+export interface PreparedMaterials {
+  heap: Vec4Heap;
+  atlas: TextureAtlas;
+  infoOffset: TextureInfoOffsets;
+  materialOffsets: number[];
+  objectMaterialOffsets: number[];
+  uses: { textures: boolean; materials: MaterialFeatureUses };
+  warnings: string[];
+}
+
+/** Packs the materials (of the scene and its analytic objects) and the texture atlas. */
+export function prepareMaterials(scene: NormalizedScene, limits: AtlasLimits, options: { energyCompensation?: boolean } = {}): PreparedMaterials {
   const warnings: string[] = [];
   const heap = new Vec4Heap();
   const objectMaterials = scene.sceneObjects.map((o) => o.material);
@@ -49,34 +71,70 @@ export async function prepareScene(scene: NormalizedScene, limits: AtlasLimits, 
   const infoOffset = (texture: number, srgb: boolean): number => atlas.infoOffset(texture, srgb);
   const materialOffsets = packMaterials(heap, scene.materials, infoOffset, materialPlan);
   const objectMaterialOffsets = packMaterials(heap, objectMaterials, infoOffset, materialPlan);
+  return { heap, atlas, infoOffset, materialOffsets, objectMaterialOffsets, uses: { textures: usages.length > 0, materials: materialPlan.uses }, warnings };
+}
+
+/**
+ * Packs the geometry against prepared materials: vertex streams, world-space primitives and (in
+ * 'cpu-upload' mode) their BVH, instance records and the emissive triangles. A scene whose meshes
+ * and instances are replaced (`updateScene`) re-runs only this half.
+ */
+export async function prepareGeometry(
+  scene: NormalizedScene,
+  materials: PreparedMaterials,
+  options: { signal?: AbortSignal; accelerationBuildMode?: AccelerationBuildMode } = {},
+): Promise<PreparedScene> {
+  const { infoOffset } = materials;
   const streams = packVertexStreams(scene.meshes);
   const lights = buildLightTable(scene, infoOffset);
   const flat = flattenPrimitives(scene, infoOffset);
-  const bvh = await buildBvhAsync(flat.boundsTriangles, options.signal ? { signal: options.signal } : {});
-  const nodes = packWavefrontBvhNodes(bvh);
-  const { min, max } = flat.bounds;
-  const empty = scene.triangleCount + scene.sceneObjects.length === 0;
-  const sceneCenter: [number, number, number] = [0.5 * (min[0] + max[0]), 0.5 * (min[1] + max[1]), 0.5 * (min[2] + max[2])];
-  const sceneRadius = empty ? 1 : Math.max(1e-6, 0.5 * Math.hypot(max[0] - min[0], max[1] - min[1], max[2] - min[2]));
+  const gpu = options.accelerationBuildMode === 'gpu';
+  const cpuBvh = gpu ? null : await buildBvhAsync(flat.boundsTriangles, options.signal ? { signal: options.signal } : {});
+  const bvh = cpuBvh ?? gpuBuildPending(flat.count);
+  const nodes = cpuBvh ? packWavefrontBvhNodes(cpuBvh) : new ArrayBuffer(0);
+  const { sceneCenter, sceneRadius } = sceneExtent(scene, flat);
   return {
     primitives: packPrimitives(flat, bvh.triangleOrder),
     bvhNodes: nodes,
-    bvhParents: bvhParentLinks(nodes, bvh.nodeCount),
+    bvhParents: gpu ? new Uint32Array(0) : bvhParentLinks(nodes, bvh.nodeCount),
     alphaPrimitives: flat.alphaPrimitives,
-    instances: packInstances(scene, streams, materialOffsets, objectMaterialOffsets, lights.lightBase),
+    instances: packInstances(scene, streams, materials.materialOffsets, materials.objectMaterialOffsets, lights.lightBase),
     indices: streams.indices,
     vertexStreams: streams.vertexStreams,
-    materials: heap.finish(),
-    atlas,
+    materials: materials.heap.finish(),
+    atlas: materials.atlas,
     lights: lights.records,
     lightCount: lights.count,
     lightPower: lights.totalPower,
     primitiveCount: flat.count,
     triangleCount: scene.triangleCount,
     bvh: { nodeCount: bvh.nodeCount, depth: bvh.depth, sahCost: bvh.sahCost, buildTimeMs: bvh.buildTimeMs },
+    acceleration: { mode: gpu ? 'gpu' : 'cpu-upload', order: gpu ? null : bvh.triangleOrder },
     sceneCenter,
     sceneRadius,
-    uses: { analyticShapes: scene.sceneObjects.length > 0, alphaTest: flat.alphaCount > 0, textures: usages.length > 0, emissiveLights: lights.count > 0, materials: materialPlan.uses },
-    warnings,
+    uses: { analyticShapes: scene.sceneObjects.length > 0, alphaTest: flat.alphaCount > 0, textures: materials.uses.textures, emissiveLights: lights.count > 0, materials: materials.uses.materials },
+    warnings: materials.warnings,
   };
+}
+
+export async function prepareScene(
+  scene: NormalizedScene,
+  limits: AtlasLimits,
+  options: { signal?: AbortSignal; energyCompensation?: boolean; accelerationBuildMode?: AccelerationBuildMode } = {},
+): Promise<PreparedScene> {
+  return prepareGeometry(scene, prepareMaterials(scene, limits, options), options);
+}
+
+/** Centre and radius of the scene's bounding sphere (radius 1 for an empty scene). */
+export function sceneExtent(scene: NormalizedScene, flat: FlatPrimitives): { sceneCenter: [number, number, number]; sceneRadius: number } {
+  const { min, max } = flat.bounds;
+  const empty = scene.triangleCount + scene.sceneObjects.length === 0;
+  const sceneCenter: [number, number, number] = [0.5 * (min[0] + max[0]), 0.5 * (min[1] + max[1]), 0.5 * (min[2] + max[2])];
+  const sceneRadius = empty ? 1 : Math.max(1e-6, 0.5 * Math.hypot(max[0] - min[0], max[1] - min[1], max[2] - min[2]));
+  return { sceneCenter, sceneRadius };
+}
+
+/** Before a GPU build: scene order (the identity) and no nodes yet. */
+function gpuBuildPending(count: number): Pick<BvhBuildResult, 'triangleOrder' | 'nodeCount' | 'depth' | 'sahCost' | 'buildTimeMs'> {
+  return { triangleOrder: Uint32Array.from({ length: count }, (_, i) => i), nodeCount: 0, depth: 0, sahCost: 0, buildTimeMs: 0 };
 }

@@ -3,7 +3,8 @@
  * src/post/denoise/atrous.wesl): the same demodulation, variance, edge-stopping weights and a-trous
  * passes, in double precision, for the tests to compare the GPU with, and for offline use on
  * images read back from the renderer (readRadiance and readAov). The emission seen at the first
- * non-specular hit is taken out before filtering and added back after.
+ * non-specular hit is taken out before filtering and added back after; the filtered reflected
+ * radiance is scaled per channel to the raw one's total (energy over the whole image).
  */
 import { GpuRendererError } from '../../errors/gpu-renderer-error.ts';
 import { requireLinearRgbaImage, type LinearRgbaImage } from '../files/linear-image.ts';
@@ -89,9 +90,10 @@ export function denoiseAtrousReference(input: AtrousDenoiseInput, settings: Atro
   for (let i = 0; i < settings.iterations; i++) {
     const step = 1 << i;
     const out = new Float64Array(pixels * 4);
+    // 3x3 Gaussian (1/4, 1/2, 1/4) of the variance, renormalised at the border.
+    const prefiltered = new Float64Array(pixels);
     for (let y = 0; y < h; y++) {
       for (let x = 0; x < w; x++) {
-        const p = y * w + x;
         let vsum = 0, vweight = 0;
         for (let dy = -1; dy <= 1; dy++) {
           for (let dx = -1; dx <= 1; dx++) {
@@ -102,7 +104,12 @@ export function denoiseAtrousReference(input: AtrousDenoiseInput, settings: Atro
             vweight += k;
           }
         }
-        const sigmaL = settings.sigmaLuminance * Math.sqrt(Math.max(vsum / vweight, 0)) + 1e-10;
+        prefiltered[y * w + x] = Math.max(vsum / vweight, 0);
+      }
+    }
+    for (let y = 0; y < h; y++) {
+      for (let x = 0; x < w; x++) {
+        const p = y * w + x;
         const l = luminance(color[4 * p]!, color[4 * p + 1]!, color[4 * p + 2]!);
         let r = 0, g = 0, b = 0, variance = 0, weights = 0;
         for (let dy = -2; dy <= 2; dy++) {
@@ -119,6 +126,7 @@ export function denoiseAtrousReference(input: AtrousDenoiseInput, settings: Atro
             const expected = settings.sigmaDepth * (gradient[2 * p]! * Math.abs(dx * step) + gradient[2 * p + 1]! * Math.abs(dy * step));
             const wz = Math.exp(-Math.abs(z[p]! - z[q]!) / (expected + 1e-4 * Math.abs(z[p]!) + 1e-6));
             const lq = luminance(color[4 * q]!, color[4 * q + 1]!, color[4 * q + 2]!);
+            const sigmaL = settings.sigmaLuminance * Math.sqrt(prefiltered[p]! + prefiltered[q]!) + 1e-10;
             const wl = Math.exp(-Math.abs(l - lq) / sigmaL);
             const weight = b3(dx) * b3(dy) * wn * wz * wl;
             r += weight * color[4 * q]!;
@@ -133,9 +141,18 @@ export function denoiseAtrousReference(input: AtrousDenoiseInput, settings: Atro
     }
     color = out;
   }
+  // Energy over the whole image: the filtered reflected radiance takes the raw one's total.
+  const raw = [0, 0, 0], filtered = [0, 0, 0];
+  for (let p = 0; p < pixels; p++) {
+    for (let c = 0; c < 3; c++) {
+      raw[c]! += input.radiance.data[4 * p + c]! - input.emission.data[4 * p + c]!;
+      filtered[c]! += color[4 * p + c]! * factor[3 * p + c]!;
+    }
+  }
+  const scale = [0, 1, 2].map((c) => (filtered[c]! > 0 ? raw[c]! / filtered[c]! : 1));
   const result = new Float32Array(pixels * 4);
   for (let p = 0; p < pixels; p++) {
-    for (let c = 0; c < 3; c++) result[4 * p + c] = color[4 * p + c]! * factor[3 * p + c]! + input.emission.data[4 * p + c]!;
+    for (let c = 0; c < 3; c++) result[4 * p + c] = color[4 * p + c]! * factor[3 * p + c]! * scale[c]! + input.emission.data[4 * p + c]!;
     result[4 * p + 3] = 1;
   }
   return result;

@@ -7,6 +7,7 @@ import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { Document, type GLTF } from '@gltf-transform/core';
 import { KHRTextureBasisu } from '@gltf-transform/extensions';
+import { createDefaultContainer, write as writeKtx2 } from 'ktx-parse';
 import { loadGltfScene } from '../../../src/io/index.ts';
 import { accessor, createIO, quadMesh, rejectsWith, toGlb } from './helpers.ts';
 
@@ -126,10 +127,37 @@ test('non-finite positions, from bytes and from a Document', async () => {
 
 test('unsupported required extension', async () => {
   const doc = new Document();
+  doc.createScene().addChild(doc.createNode('n').setMesh(quadMesh(doc, doc.createBuffer())));
+  const { json, resources } = await createIO().writeJSON(doc);
+  json.extensionsUsed = ['KHR_materials_unlit', 'MSFT_texture_dds'];
+  json.extensionsRequired = ['KHR_materials_unlit', 'MSFT_texture_dds'];
+  const buffer = json.buffers![0];
+  buffer.uri = `data:application/octet-stream;base64,${Buffer.from(resources[buffer.uri!]).toString('base64')}`;
+  await bad(new TextEncoder().encode(JSON.stringify(json)), '/extensionsRequired/1', /MSFT_texture_dds is not supported/);
+});
+
+test('an unsupported optional extension is drawn without, with one warning naming it; metadata-only ones pass silently', async () => {
+  const doc = new Document();
+  doc.createScene().addChild(doc.createNode('n').setMesh(quadMesh(doc, doc.createBuffer())));
+  const { json, resources } = await createIO().writeJSON(doc);
+  json.extensionsUsed = ['MSFT_lod', 'FB_ngon_encoding'];
+  const buffer = json.buffers![0];
+  buffer.uri = `data:application/octet-stream;base64,${Buffer.from(resources[buffer.uri!]).toString('base64')}`;
+  const scene = await loadGltfScene(new TextEncoder().encode(JSON.stringify(json)));
+  assert.deepEqual(scene.warnings, ['MSFT_lod: not supported; the asset is drawn without it']);
+});
+
+test('a KTX2 image that does not decode: truncated, or of a format the loader cannot read', async () => {
+  const doc = new Document();
   doc.createExtension(KHRTextureBasisu).setRequired(true);
   const tex = doc.createTexture('gpu').setMimeType('image/ktx2').setImage(new Uint8Array([0xab, 0x4b, 0x54, 0x58, 0x20, 0x32, 0x30, 0xbb, 0x0d, 0x0a, 0x1a, 0x0a]));
   doc.createScene().addChild(doc.createNode('n').setMesh(quadMesh(doc, doc.createBuffer(), doc.createMaterial().setBaseColorTexture(tex))));
-  await bad(await toGlb(doc), '/extensionsRequired/0', /KHR_texture_basisu is not supported/);
+  await bad(await toGlb(doc), '/images/0', /KTX2 image does not decode: the KTX2 container does not parse/);
+  // A well-formed container of a block-compressed format (BC7, vkFormat 145) is refused by name.
+  const bc7 = createDefaultContainer();
+  Object.assign(bc7, { vkFormat: 145, typeSize: 1, pixelWidth: 4, pixelHeight: 4, levels: [{ levelData: new Uint8Array(16), uncompressedByteLength: 16 }] });
+  tex.setImage(writeKtx2(bc7));
+  await bad(await toGlb(doc), '/images/0', /vkFormat 145 is not supported/);
 });
 
 test('undecodable image bytes, and an external image file that does not exist', async () => {

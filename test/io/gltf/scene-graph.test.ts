@@ -3,6 +3,7 @@ import assert from 'node:assert/strict';
 import { Document } from '@gltf-transform/core';
 import { EXTMeshGPUInstancing, KHRLightsPunctual, KHRMaterialsVariants, KHRNodeVisibility } from '@gltf-transform/extensions';
 import { loadGltfScene } from '../../../src/io/index.ts';
+import { frameBounds } from '../../../src/scene/camera-framing.ts';
 import {
   accessor,
   assertClose,
@@ -124,17 +125,22 @@ test('cameras: perspective and orthographic from node world matrices; selection 
   await rejectsWith(loadGltfScene(glb, { camera: 'nope' }), 'INVALID_OPTION', 'camera', /no camera "nope"/);
 });
 
-test('no camera: the default camera frames the bounding sphere with a 45 degree fov from +Z', async () => {
+test('no camera: the default camera is a raised three-quarter view fitted to the bounds (frameBounds), for the aspect ratio asked', async () => {
   const doc = new Document();
   const node = doc.createNode('n').setMesh(quadMesh(doc, doc.createBuffer())).setScale([4, 2, 1]).setTranslation([-1, 0, 0]);
   doc.createScene().addChild(node);
-  const scene = await loadGltfScene(await toGlb(doc));
-  // Bounds [-1, 3] x [0, 2] x [0, 0]: centre (1, 1, 0), radius sqrt(16 + 4) / 2.
-  const radius = Math.sqrt(20) / 2;
-  const distance = radius / Math.sin(Math.PI / 8);
-  assert.equal(scene.camera.fovYDegrees, 45);
+  const glb = await toGlb(doc);
+  const scene = await loadGltfScene(glb);
+  // Bounds [-1, 3] x [0, 2] x [0, 0]: the quad faces +Z; it is looked at from azimuth 30 degrees
+  // (towards +X) and elevation 25, not edge-on and not straight on.
   assertClose(scene.camera.target, [1, 1, 0], 1e-9, 'target');
-  assertClose(scene.camera.position, [1, 1, distance], 1e-9, 'position');
+  assert.deepEqual(scene.camera, frameBounds(scene.bounds, { azimuthDegrees: 30, elevationDegrees: 25, fovYDegrees: 45, aspectRatio: 1 }));
+  const toEye = scene.camera.position.map((v, i) => v - scene.camera.target[i]);
+  const length = Math.hypot(...toEye);
+  assertClose(toEye.map((v) => v / length), [Math.sin(Math.PI / 6) * Math.cos((25 * Math.PI) / 180), Math.sin((25 * Math.PI) / 180), Math.cos(Math.PI / 6) * Math.cos((25 * Math.PI) / 180)], 1e-9, 'direction');
+  const wide = await loadGltfScene(glb, { aspectRatio: 2 });
+  assert.deepEqual(wide.camera, frameBounds(wide.bounds, { aspectRatio: 2 }));
+  assert.ok(Math.hypot(...wide.camera.position.map((v, i) => v - wide.camera.target[i])) < length, 'a wider image frames the wide quad from closer');
 });
 
 test('KHR_lights_punctual: world position, direction (-Z of the node) and parameters', async () => {

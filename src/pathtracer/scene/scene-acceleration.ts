@@ -1,0 +1,113 @@
+/**
+ * The renderer's BVH on the device, in either build mode, and how it follows moved geometry:
+ *
+ * - 'cpu-upload' (default): the CPU binned-SAH tree prepareScene built is uploaded with the
+ *   primitives; a refit recomputes its boxes on the GPU (GpuBvhRefitter), a rebuild runs the CPU
+ *   builder again and uploads.
+ * - 'gpu': prepareScene leaves the records in scene order; they go to a source buffer and the GPU
+ *   LBVH builder writes primitives, nodes and parent links; a refit re-gathers and refits on the
+ *   GPU, a rebuild runs the GPU build again.
+ *
+ * Either way the traversal reads the same three buffers in the same format.
+ */
+import { buildBvhAsync } from '../../accel/bvh-builder.ts';
+import { GpuBvhBuilder, GpuBvhRefitter } from '../../accel/gpu-build/gpu-bvh-builder.ts';
+import { bvhParentLinks, packPrimitives, packWavefrontBvhNodes } from '../../accel/triangle-packing.ts';
+import { BufferUsage } from '../../gpu/webgpu-constants.ts';
+import type { GpuBufferSet } from '../gpu-buffers.ts';
+import type { FlatPrimitives } from './flatten-primitives.ts';
+import type { AccelerationBuildMode, PreparedScene } from './prepare-scene.ts';
+
+export type BvhUpdateMode = 'refit' | 'rebuild';
+
+export interface SceneBvhBuffers {
+  primitives: GPUBuffer;
+  bvhNodes: GPUBuffer;
+  bvhParents: GPUBuffer;
+}
+
+function identity(count: number): Uint32Array {
+  return Uint32Array.from({ length: count }, (_, i) => i);
+}
+
+export class SceneAcceleration {
+  readonly mode: AccelerationBuildMode;
+  private readonly device: GPUDevice;
+  private readonly prepared: PreparedScene;
+  private readonly buffers: SceneBvhBuffers;
+  private readonly builder: GpuBvhBuilder | null;
+  private readonly source: GPUBuffer | null;
+  private readonly owner: GpuBufferSet | null;
+  private refitter: GpuBvhRefitter | null = null;
+
+  private constructor(device: GPUDevice, prepared: PreparedScene, buffers: SceneBvhBuffers, gpu: { builder: GpuBvhBuilder; source: GPUBuffer; owner: GpuBufferSet } | null) {
+    this.device = device;
+    this.prepared = prepared;
+    this.buffers = buffers;
+    this.mode = prepared.acceleration.mode;
+    this.builder = gpu?.builder ?? null;
+    this.source = gpu?.source ?? null;
+    this.owner = gpu?.owner ?? null;
+  }
+
+  /**
+   * Takes over the uploaded scene buffers; in 'gpu' mode uploads the scene-order records and builds
+   * the tree on the GPU (filling in `prepared.bvh`). `owner` tracks the source buffer's memory.
+   */
+  static async create(device: GPUDevice, prepared: PreparedScene, buffers: SceneBvhBuffers, owner: GpuBufferSet): Promise<SceneAcceleration> {
+    if (prepared.acceleration.mode !== 'gpu') return new SceneAcceleration(device, prepared, buffers, null);
+    const source = owner.upload('bvhSource', prepared.primitives, BufferUsage.STORAGE, 'scene');
+    const builder = await GpuBvhBuilder.create(device, { source, primitiveCount: prepared.primitiveCount, primitives: buffers.primitives, nodes: buffers.bvhNodes, parents: buffers.bvhParents });
+    const acceleration = new SceneAcceleration(device, prepared, buffers, { builder, source, owner });
+    await acceleration.buildOnGpu();
+    return acceleration;
+  }
+
+  private async buildOnGpu(): Promise<void> {
+    const result = await this.builder!.build();
+    // The scratch (sort keys, LBVH nodes) is made again by the next rebuild; the order stays for refits.
+    this.builder!.releaseScratch();
+    this.prepared.bvh = { nodeCount: result.nodeCount, depth: result.depth, sahCost: result.sahCost, buildTimeMs: result.buildTimeMs };
+  }
+
+  /**
+   * The scene's primitives moved (same primitives, same count): brings the tree along. A refit
+   * keeps the topology and recomputes every box on the GPU; a rebuild builds a fresh tree in this
+   * scene's mode. Returns the wall time of the BVH work, ms.
+   */
+  async update(flat: FlatPrimitives, how: BvhUpdateMode): Promise<number> {
+    const started = performance.now();
+    const queue = this.device.queue;
+    if (this.mode === 'gpu') {
+      queue.writeBuffer(this.source!, 0, packPrimitives(flat, identity(flat.count)));
+      if (how === 'refit') await this.builder!.refit();
+      else await this.buildOnGpu();
+      return performance.now() - started;
+    }
+    if (how === 'refit') {
+      queue.writeBuffer(this.buffers.primitives, 0, packPrimitives(flat, this.prepared.acceleration.order!));
+      this.refitter ??= await GpuBvhRefitter.create(this.device, { nodes: this.buffers.bvhNodes, parents: this.buffers.bvhParents, primitives: this.buffers.primitives, nodeCount: this.prepared.bvh.nodeCount });
+      await this.refitter.refit();
+      return performance.now() - started;
+    }
+    const bvh = await buildBvhAsync(flat.boundsTriangles);
+    const nodes = packWavefrontBvhNodes(bvh);
+    queue.writeBuffer(this.buffers.primitives, 0, packPrimitives(flat, bvh.triangleOrder));
+    queue.writeBuffer(this.buffers.bvhNodes, 0, nodes);
+    queue.writeBuffer(this.buffers.bvhParents, 0, bvhParentLinks(nodes, bvh.nodeCount));
+    this.prepared.acceleration.order = bvh.triangleOrder;
+    this.prepared.bvh = { nodeCount: bvh.nodeCount, depth: bvh.depth, sahCost: bvh.sahCost, buildTimeMs: bvh.buildTimeMs };
+    // The refitter's node count belongs to the old tree.
+    this.refitter?.destroy();
+    this.refitter = null;
+    await queue.onSubmittedWorkDone();
+    return performance.now() - started;
+  }
+
+  destroy(): void {
+    this.builder?.destroy();
+    this.refitter?.destroy();
+    // The scene-order records (a scene replaced by updateScene gets a new acceleration).
+    if (this.source) this.owner?.release(this.source);
+  }
+}
