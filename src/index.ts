@@ -14,3 +14,4 @@ export * from './xr/index.ts';
 export * from './animation/index.ts';
 export * from './io/index.ts';
 export * from './raster/index.ts';
+export * from './sequence/index.ts';

@@ -3,7 +3,11 @@ import { GpuRendererError } from '../errors/gpu-renderer-error.ts';
 import type { WavefrontAovName } from '../post/aovs.ts';
 import { imageFileFormatFromPath, type ImageFileFormat } from '../post/files/image-file.ts';
 import { parseAovList, parseDuration } from '../post/option-parsing.ts';
+import { parseOrigin } from '../io/resource-policy.ts';
 import type { WavefrontToneMapping } from '../scene/types.ts';
+import { parseFrameList } from '../sequence/frame-list.ts';
+import { parseFarmArgs, type FarmCommand } from './farm-args.ts';
+import { hasCameraPlaceholder, hasFramePlaceholder, hasVariantPlaceholder } from '../sequence/output-pattern.ts';
 
 export interface RenderCommand {
   kind: 'render';
@@ -51,6 +55,22 @@ export interface RenderCommand {
   envIntensity?: number;
   /** Rotation of the environment map about +Y in degrees (`--env-rotation`). */
   envRotationDegrees?: number;
+  /** glTF: the animation to pose, by name, else by index (`--animation`). */
+  animation?: string;
+  /** glTF: seconds into the animation for a still or a turntable (`--at`). */
+  at?: number;
+  /** Sequence: frame numbers, each posed at frame / fps (`--frames`). */
+  frames?: number[];
+  /** Frames per second of `frames` (`--fps`); default 24. */
+  fps?: number;
+  /** Sequence: frames per orbit of the framed model (`--turntable`). */
+  turntable?: number;
+  /** Sequence: KHR_materials_variants to render, one image each (`--variants all|a,b`). */
+  variants?: 'all' | string[];
+  /** Sequence: glTF cameras to render from, one pass each (`--cameras all|a,b`). */
+  cameras?: 'all' | string[];
+  /** Sequence: render frames whose file exists too (`--overwrite`); default they are skipped. */
+  overwrite?: boolean;
   /** Negative texels of an environment map file (lossy EXR ringing): set to 0 and reported, or refused. */
   negativeTexels: 'zero' | 'error';
   /** Eye position (`--camera-position x,y,z`); replaces the scene's camera. */
@@ -63,6 +83,8 @@ export interface RenderCommand {
   fovYDegrees?: number;
   /** Where the BVH is built (`--bvh-build`): 'cpu-upload' (the renderer's default) or 'gpu'. */
   accelerationBuildMode?: 'cpu-upload' | 'gpu';
+  /** Origins the scene's references may be fetched from (`--allow-origin`, repeatable); default none. */
+  allowedOrigins?: string[];
 }
 
 export interface HelpCommand {
@@ -70,7 +92,7 @@ export interface HelpCommand {
   text: string;
 }
 
-export type CliCommand = RenderCommand | HelpCommand;
+export type CliCommand = RenderCommand | HelpCommand | FarmCommand;
 
 export const renderDefaults = {
   width: 512,
@@ -91,6 +113,7 @@ export const renderDefaults = {
 } as const satisfies Omit<RenderCommand, 'kind' | 'scenePath' | 'aovs'>;
 
 export const usage = `Usage: gpu-renderer render [scene.json | model.glb | model.gltf] [options]
+       gpu-renderer farm <submit | worker | status> [options]   (see gpu-renderer farm --help)
 
 Renders a scene with the WebGPU wavefront path tracer and writes a PNG, OpenEXR or Radiance HDR
 image (by the extension of --out). The scene is a scene JSON file or a glTF 2.0 asset (.glb or
@@ -141,8 +164,24 @@ Options:
                            the scene bounds)
   --fov <deg>              vertical field of view of the camera rendered from, in (0, 179]
   --variant <name>         glTF: KHR_materials_variants variant to render
+  --animation <name|i>     glTF: the animation to pose, by name or index (default the first)
+  --at <seconds>           glTF: pose the animation at this time (default 0)
+
+Sequences (glTF; --out holds #### for the frame number, {variant} and {camera} for names):
+  --frames <list>          frames to render, e.g. 0-23, 0-239:10, 1,5,9; frame f poses the
+                           animation at f / fps
+  --fps <n>                frames per second of --frames (default 24)
+  --turntable <n>          orbit the framed model in n frames (with --frames: frame f looks from
+                           360 f / n degrees)
+  --variants <all|a,b>     one image per KHR_materials_variants variant
+  --cameras <all|a,b>      one image per glTF camera (by name; {camera} in --out)
+  --overwrite              render frames whose file exists (default: skip them, so an
+                           interrupted sequence resumes)
   --bvh-build <where>      cpu-upload (binned SAH on the CPU, the default) | gpu (LBVH built on the
                            GPU: faster to build on a real GPU, its tree ~25-30 % costlier (SAH))
+  --allow-origin <origin>  let the scene's references fetch from this origin (e.g.
+                           https://cdn.example.com; repeatable or comma separated). By default a
+                           scene reads only files in its own folder and makes no network request
   -h, --help               show this help
 `;
 
@@ -167,6 +206,11 @@ function positiveNumber(flag: string, text: string): number {
   const n = text.trim() === '' ? Number.NaN : Number(text);
   if (!Number.isFinite(n) || n <= 0) invalid(flag, `expected a finite number > 0, got ${JSON.stringify(text)}`);
   return n;
+}
+
+/** A command that renders a sequence of images (frames, a turntable or variants) rather than one still. */
+export function isSequence(command: Pick<RenderCommand, 'frames' | 'turntable' | 'variants' | 'cameras'>): boolean {
+  return command.frames !== undefined || command.turntable !== undefined || command.variants !== undefined || command.cameras !== undefined;
 }
 
 /** `x,y,z`: three finite numbers separated by commas. */
@@ -321,6 +365,39 @@ export function parseRenderArgs(argv: readonly string[]): RenderCommand | HelpCo
       case '--env-rotation':
         command.envRotationDegrees = finiteNumber(flag, take());
         break;
+      case '--animation': {
+        const name = take();
+        if (name === '') invalid(flag, 'expects an animation name or index');
+        command.animation = name;
+        break;
+      }
+      case '--at':
+        command.at = finiteNumber(flag, take(), 0);
+        break;
+      case '--frames':
+        command.frames = parseFrameList(take(), flag);
+        break;
+      case '--fps':
+        command.fps = positiveNumber(flag, take());
+        break;
+      case '--turntable':
+        command.turntable = integer(flag, take(), 1, 100000);
+        break;
+      case '--variants':
+      case '--cameras': {
+        const list = take();
+        let names: 'all' | string[] = 'all';
+        if (list !== 'all') {
+          names = list.split(',').map((n) => n.trim());
+          if (names.some((n) => n === '')) invalid(flag, `expected all or comma-separated names, got ${JSON.stringify(list)}`);
+        }
+        command[flag === '--variants' ? 'variants' : 'cameras'] = names;
+        break;
+      }
+      case '--overwrite':
+        if (value !== undefined) invalid(flag, 'takes no value');
+        command.overwrite = true;
+        break;
       case '--negative-texels': {
         const mode = take();
         if (mode !== 'zero' && mode !== 'error') invalid(flag, `expected zero or error, got ${JSON.stringify(mode)}`);
@@ -343,6 +420,9 @@ export function parseRenderArgs(argv: readonly string[]): RenderCommand | HelpCo
         command.fovYDegrees = fov;
         break;
       }
+      case '--allow-origin':
+        for (const origin of take().split(',')) (command.allowedOrigins ??= []).push(parseOrigin(origin.trim(), flag));
+        break;
       default:
         invalid(flag, `unknown option (see --help)`);
     }
@@ -362,8 +442,26 @@ export function parseRenderArgs(argv: readonly string[]): RenderCommand | HelpCo
   if (command.camera !== undefined && (command.orbit !== undefined || command.cameraPosition !== undefined)) {
     invalid('--camera', `names a camera of the asset; ${command.orbit !== undefined ? '--orbit' : '--camera-position'} places one instead`);
   }
-  for (const [flag, value] of [['--camera', command.camera], ['--variant', command.variant]] as const) {
+  const gltfOnly = [['--camera', command.camera], ['--variant', command.variant], ['--animation', command.animation], ['--at', command.at], ['--frames', command.frames], ['--turntable', command.turntable], ['--variants', command.variants], ['--cameras', command.cameras]] as const;
+  for (const [flag, value] of gltfOnly) {
     if (value !== undefined && (command.scenePath === undefined || !isGltfPath(command.scenePath))) invalid(flag, 'applies to glTF scenes (.glb or .gltf) only');
+  }
+  if (command.at !== undefined && command.frames !== undefined) invalid('--at', '--frames pose frame f at f / fps; give one of --at and --frames');
+  if (command.fps !== undefined && command.frames === undefined) invalid('--fps', 'applies with --frames');
+  if (command.variant !== undefined && command.variants !== undefined) invalid('--variants', 'give one of --variant and --variants');
+  if (command.camera !== undefined && command.cameras !== undefined) invalid('--cameras', 'give one of --camera and --cameras');
+  if (command.turntable !== undefined && command.cameras !== undefined) invalid('--cameras', 'a turntable brings its own camera; give one of --turntable and --cameras');
+  const placed = command.orbit !== undefined ? '--orbit' : command.cameraPosition !== undefined ? '--camera-position' : undefined;
+  if (placed !== undefined && command.turntable !== undefined) invalid('--turntable', `a turntable brings its own camera; give one of --turntable and ${placed}`);
+  if (placed !== undefined && command.cameras !== undefined) invalid('--cameras', `give one of --cameras and ${placed}`);
+  if (command.overwrite === true && !isSequence(command)) invalid('--overwrite', 'applies to sequences (--frames, --turntable, --variants, --cameras)');
+  if (isSequence(command)) {
+    const frameCount = command.frames?.length ?? command.turntable ?? 1;
+    if (frameCount > 1 && !hasFramePlaceholder(command.out)) invalid('--out', `${frameCount} frames need a frame number in the file name: put #### where it goes (e.g. shot-####.png)`);
+    const variantCount = command.variants === 'all' ? Infinity : (command.variants?.length ?? 1);
+    if (variantCount > 1 && !hasVariantPlaceholder(command.out)) invalid('--out', 'several variants need {variant} in the file name (e.g. shoe-{variant}.png)');
+    const cameraCount = command.cameras === 'all' ? Infinity : (command.cameras?.length ?? 1);
+    if (cameraCount > 1 && !hasCameraPlaceholder(command.out)) invalid('--out', 'several cameras need {camera} in the file name (e.g. room-{camera}.png)');
   }
   return command;
 }
@@ -372,6 +470,7 @@ export function parseRenderArgs(argv: readonly string[]): RenderCommand | HelpCo
 export function parseCliArgs(argv: readonly string[]): CliCommand {
   const [sub, ...rest] = argv;
   if (sub === undefined || sub === '-h' || sub === '--help' || sub === 'help') return { kind: 'help', text: usage };
-  if (sub !== 'render') invalid('command', `unknown command ${JSON.stringify(sub)} (expected "render")`);
+  if (sub === 'farm') return parseFarmArgs(rest);
+  if (sub !== 'render') invalid('command', `unknown command ${JSON.stringify(sub)} (expected "render" or "farm")`);
   return parseRenderArgs(rest);
 }

@@ -2,8 +2,8 @@
  * `--env`, `--env-intensity`, `--env-rotation` and `--negative-texels`: the environment map the CLI
  * renders with.
  */
-import { readFile } from 'node:fs/promises';
 import { GpuRendererError } from '../errors/gpu-renderer-error.ts';
+import { locateSource, readSource, resolveResourcePolicy, type ResourcePolicy } from '../io/resource-policy.ts';
 import type { EnvironmentMapInput } from '../lighting/environment-map.ts';
 import { loadEnvironmentMap, type EnvironmentMapSource, type NegativeTexelReport } from '../lighting/load-environment-map.ts';
 import type { WavefrontSceneDescription } from '../scene/types.ts';
@@ -23,14 +23,12 @@ export function negativeTexelNote(field: string, report: NegativeTexelReport): s
  * @pmndrs/assets are shipped (`export default 'data:application/exr;base64,...'`): read as text,
  * never run. Anything else is a map file read as it is.
  */
-async function environmentSource(path: string): Promise<EnvironmentMapSource> {
+async function environmentSource(path: string, resourcePolicy: ResourcePolicy | undefined): Promise<EnvironmentMapSource> {
   if (!/\.m?js$/i.test(path)) return path;
-  let text: string;
-  try {
-    text = await readFile(path, 'utf8');
-  } catch (cause) {
-    throw new GpuRendererError('INVALID_ENVIRONMENT', `cannot read ${path}: ${(cause as Error).message}`, { field: '--env', cause });
-  }
+  // Read as any source is: a regular file within the resource limits (never a pipe or device).
+  const site = { code: 'INVALID_ENVIRONMENT', field: '--env' } as const;
+  const bytes = await readSource(await locateSource(path, site), await resolveResourcePolicy(resourcePolicy), site);
+  const text = new TextDecoder().decode(bytes);
   const match = /^\s*export\s+default\s+(['"])(data:[^'"\s]+)\1\s*;?\s*$/.exec(text);
   if (match === null) throw new GpuRendererError('INVALID_ENVIRONMENT', 'a .js environment map must be a module whose only statement is `export default "data:..."`', { field: '--env' });
   return new URL(match[2]!);
@@ -41,19 +39,21 @@ async function environmentSource(path: string): Promise<EnvironmentMapSource> {
  * module exporting one as a data: URL; read and validated by loadEnvironmentMap: errors are
  * INVALID_ENVIRONMENT naming `--env`), and applies `--env-intensity` / `--env-rotation` (degrees)
  * to whichever map lights the scene; they need one. `note` receives what `--negative-texels zero`
- * changed.
+ * changed; `resourcePolicy` bounds the read (the CLI's: see render-command.ts).
  */
 export async function applyEnvironmentFlags(
   scene: SceneWithMap,
   command: Pick<RenderCommand, 'env' | 'envIntensity' | 'envRotationDegrees'> & Partial<Pick<RenderCommand, 'negativeTexels'>>,
   note: (text: string) => void = () => {},
+  resourcePolicy?: ResourcePolicy,
 ): Promise<SceneWithMap> {
   let map = scene.environmentMap;
   if (command.env !== undefined) {
     const negativeTexels = command.negativeTexels ?? 'zero';
-    map = await loadEnvironmentMap(await environmentSource(command.env), {
+    map = await loadEnvironmentMap(await environmentSource(command.env, resourcePolicy), {
       field: '--env',
       negativeTexels,
+      ...(resourcePolicy ? { resourcePolicy } : {}),
       onNegativeTexels: (report) => {
         const text = negativeTexelNote('--env', report);
         if (text !== undefined) note(text);

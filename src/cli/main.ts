@@ -4,7 +4,7 @@ import { spawn } from 'node:child_process';
 import { realpathSync } from 'node:fs';
 import { pathToFileURL } from 'node:url';
 import { isGpuRendererError } from '../errors/gpu-renderer-error.ts';
-import { parseCliArgs } from './args.ts';
+import { isSequence, parseCliArgs } from './args.ts';
 import { createDawnNoticeFilter } from './dawn-notices.ts';
 import type { ProgressStream } from './progress.ts';
 import { formatSummary } from './render-format.ts';
@@ -21,6 +21,15 @@ export async function main(argv: readonly string[], stderr: ProgressStream = pro
       return 0;
     }
     // Loaded only for rendering, so --help and argument errors never touch WebGPU.
+    if (command.kind === 'farm') {
+      const { runFarmCommand } = await import('./farm-command.ts');
+      return await runFarmCommand(command, { stdout: process.stdout, stderr });
+    }
+    if (isSequence(command)) {
+      const { runSequenceCommand, formatSequenceSummary } = await import('./sequence-command.ts');
+      stderr.write(`${formatSequenceSummary(await runSequenceCommand(command, { stderr }))}\n`);
+      return 0;
+    }
     const { runRenderCommand } = await import('./render-command.ts');
     const summary = await runRenderCommand(command, { stderr });
     stderr.write(`${formatSummary(summary)}\n`);
@@ -65,10 +74,11 @@ function childStderr(columns: string): ProgressStream {
   return { write: (text: string) => process.stderr.write(text), isTTY: columns !== '', ...(columns !== '' ? { columns: Number(columns) } : {}) };
 }
 
-/** Whether `argv` renders (anything else, help and argument errors, runs in this process). */
+/** Whether `argv` renders: a still, a sequence or a farm worker (anything else, help and argument errors, runs in this process). */
 function renders(argv: readonly string[]): boolean {
   try {
-    return parseCliArgs(argv).kind === 'render';
+    const command = parseCliArgs(argv);
+    return command.kind === 'render' || (command.kind === 'farm' && command.action === 'worker');
   } catch {
     return false;
   }

@@ -32,7 +32,9 @@ export type GpuRendererErrorCode =
   /** A punctual or area light with missing, non-finite or out-of-range parameters. */
   | 'INVALID_LIGHT'
   /** A feature flag asking for a transport that would add bias (this renderer is unbiased by construction). */
-  | 'BIASED_TRANSPORT_REFUSED';
+  | 'BIASED_TRANSPORT_REFUSED'
+  /** The render farm's job queue (Redis) cannot be reached; `field` names where its address came from. */
+  | 'QUEUE_UNAVAILABLE';
 
 export class GpuRendererError extends Error {
   readonly code: GpuRendererErrorCode;

@@ -1,4 +1,5 @@
 import { GpuRendererError } from '../errors/gpu-renderer-error.ts';
+import { describe } from '../errors/validate.ts';
 
 export interface AcquireGpuDeviceOptions {
   /** Share an existing device instead of creating one. */
@@ -49,7 +50,26 @@ export function describeAdapter(adapter: GPUAdapter): string {
   return describeAdapterInfo(adapter.info as Partial<GPUAdapterInfo> | undefined, 'unknown adapter');
 }
 
+/**
+ * A shared `device` must be a GPUDevice (by shape: `features`, `limits`, `queue`, the create
+ * methods; browsers and Dawn have their own classes) and `powerPreference` one of WebGPU's two.
+ */
+function validateDeviceOptions(options: AcquireGpuDeviceOptions): void {
+  const d = options.device as unknown;
+  if (d !== undefined) {
+    const device = d as Partial<GPUDevice> | null;
+    const ok = typeof device === 'object' && device !== null && typeof device.createCommandEncoder === 'function' && typeof device.createBuffer === 'function' &&
+      typeof device.features?.has === 'function' && typeof device.limits === 'object' && device.limits !== null && typeof device.queue?.submit === 'function';
+    if (!ok) throw new GpuRendererError('INVALID_OPTION', `expected a GPUDevice, got ${describe(d)}`, { field: 'device' });
+  }
+  const p = options.powerPreference as unknown;
+  if (p !== undefined && p !== 'low-power' && p !== 'high-performance') {
+    throw new GpuRendererError('INVALID_OPTION', `expected "low-power" or "high-performance", got ${describe(p)}`, { field: 'powerPreference' });
+  }
+}
+
 export async function acquireGpuDevice(options: AcquireGpuDeviceOptions = {}): Promise<AcquiredGpuDevice> {
+  validateDeviceOptions(options);
   if (options.device) {
     const device = options.device;
     return {

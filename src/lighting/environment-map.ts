@@ -4,6 +4,7 @@ import { directionToEquirectUv } from './equirect.ts';
 import { halfToFloat } from './half-float.ts';
 import type { Vec3 } from './vec3.ts';
 import { requireKnownKeys } from './known-keys.ts';
+import { maxRadiance } from '../scene/limits.ts';
 
 /**
  * The `environmentMap` option: an equirectangular radiance map (see equirect.ts for the mapping).
@@ -59,6 +60,7 @@ export function validateEnvironmentMap(input: unknown, field = 'environmentMap')
   if (intensity < 0) fail(code, `${field}.intensity`, `must be >= 0, got ${intensity}`);
   const rotationRadians = value.rotationRadians === undefined ? 0 : requireFiniteNumber(value.rotationRadians, `${field}.rotationRadians`, code);
   const data = new Float32Array(expected);
+  let brightest = 0;
   for (let t = 0; t < width * height; t++) {
     for (let c = 0; c < 3; c++) {
       const v = isHalf ? halfToFloat(raw[4 * t + c]!) : raw[4 * t + c]!;
@@ -70,9 +72,12 @@ export function validateEnvironmentMap(input: unknown, field = 'environmentMap')
         );
       }
       data[4 * t + c] = v;
+      if (v > brightest) brightest = v;
     }
     data[4 * t + 3] = 1;
   }
+  // Radiance the renderer supports (scene/limits.ts): beyond it float32 sums on the GPU overflow.
+  if (brightest * intensity > maxRadiance) fail(code, `${field}.intensity`, `texel radiance x intensity ${brightest * intensity} exceeds the supported ${maxRadiance}`);
   return { width, height, data, intensity, rotationRadians };
 }
 

@@ -13,7 +13,7 @@ export {
   type EnvironmentSample,
 } from './environment-sampling.ts';
 export { decodeRadianceHdr, isRadianceHdr, type DecodedHdrImage } from './radiance-hdr.ts';
-export { decodeOpenExr, isOpenExr, type ExrLoaderLike, type ExrLoaderConstructor } from './openexr.ts';
+export { decodeOpenExr, isOpenExr, type DecodeOpenExrOptions, type ExrLoaderLike, type ExrLoaderConstructor } from './openexr.ts';
 export { loadEnvironmentMap, type EnvironmentMapSource, type LoadEnvironmentMapOptions, type NegativeTexelReport } from './load-environment-map.ts';
 export type { WavefrontAreaLightInput, WavefrontRectangleLightInput, WavefrontDiskLightInput, WavefrontSphereLightInput } from './light-types.ts';
 export {

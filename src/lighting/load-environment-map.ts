@@ -1,4 +1,6 @@
 import { GpuRendererError } from '../errors/gpu-renderer-error.ts';
+import { describe } from '../errors/validate.ts';
+import { budgetOf, derivePolicy, locateSource, readSource, resolveResourcePolicy, type ResourcePolicy } from '../io/resource-policy.ts';
 import { validateEnvironmentMap, type EnvironmentMap } from './environment-map.ts';
 import { decodeOpenExr, isOpenExr, type ExrLoaderConstructor } from './openexr.ts';
 import { decodeRadianceHdr, isRadianceHdr } from './radiance-hdr.ts';
@@ -23,7 +25,17 @@ export interface LoadEnvironmentMapOptions {
   negativeTexels?: 'error' | 'zero';
   /** With `negativeTexels: 'zero'`: called once with what was changed (also when nothing was). */
   onNegativeTexels?: (report: NegativeTexelReport) => void;
+  /** Ends reading or fetching the file; the load rejects with the signal's reason. */
+  signal?: AbortSignal;
+  /**
+   * Limits of the read and the decode (src/io/resource-policy.ts): the file must be a regular file
+   * (inside `root` when given), within `maxResourceBytes`, fetched within `fetchTimeoutMs`; its
+   * texels count against `maxDecodedBytes`.
+   */
+  resourcePolicy?: ResourcePolicy;
 }
+
+const OPTION_KEYS = ['intensity', 'rotationRadians', 'EXRLoader', 'field', 'negativeTexels', 'onNegativeTexels', 'signal', 'resourcePolicy'];
 
 /** What `negativeTexels: 'zero'` changed. */
 export interface NegativeTexelReport {
@@ -50,40 +62,6 @@ function zeroNegativeChannels(data: Float32Array): NegativeTexelReport {
   return { channels, addedEnergyFraction: kept > 0 ? removed / kept : 0 };
 }
 
-const isNode = (): boolean => typeof process !== 'undefined' && typeof process.versions?.node === 'string';
-
-async function readSource(source: EnvironmentMapSource, field: string): Promise<Uint8Array> {
-  if (source instanceof Uint8Array) return source;
-  if (source instanceof ArrayBuffer) return new Uint8Array(source);
-  const url = source instanceof URL ? source : /^[a-z][a-z0-9+.-]*:/i.test(source) && !/^[a-z]:[\\/]/i.test(source) ? new URL(source) : undefined;
-  if (typeof source === 'string' && url === undefined && !isNode()) {
-    // A relative URL in a browser or worker: fetch resolves it against the document.
-    return fetchBytes(source, field);
-  }
-  if (url === undefined || url.protocol === 'file:') {
-    if (!isNode()) throw new GpuRendererError('INVALID_ENVIRONMENT', 'file paths need Node.js; pass a URL or the bytes', { field });
-    const specifier = 'node:fs/promises';
-    const fs = (await import(specifier)) as { readFile: (path: string | URL) => Promise<Uint8Array> };
-    try {
-      return new Uint8Array(await fs.readFile(url ?? (source as string)));
-    } catch (cause) {
-      throw new GpuRendererError('INVALID_ENVIRONMENT', `cannot read ${String(source)}: ${(cause as Error).message}`, { field, cause });
-    }
-  }
-  return fetchBytes(url.href, field);
-}
-
-async function fetchBytes(href: string, field: string): Promise<Uint8Array> {
-  let response: Response;
-  try {
-    response = await fetch(href);
-  } catch (cause) {
-    throw new GpuRendererError('INVALID_ENVIRONMENT', `cannot fetch ${href}: ${(cause as Error).message}`, { field, cause });
-  }
-  if (!response.ok) throw new GpuRendererError('INVALID_ENVIRONMENT', `cannot fetch ${href}: HTTP ${response.status}`, { field });
-  return new Uint8Array(await response.arrayBuffer());
-}
-
 /**
  * Loads a Radiance .hdr or OpenEXR environment map (format told by the file's signature) from a
  * path, URL or bytes, and validates it as an `environmentMap` (equirectangular, top row = +Y).
@@ -91,19 +69,36 @@ async function fetchBytes(href: string, field: string): Promise<Uint8Array> {
  * `INVALID_ENVIRONMENT` errors.
  */
 export async function loadEnvironmentMap(source: EnvironmentMapSource, options: LoadEnvironmentMapOptions = {}): Promise<EnvironmentMap> {
+  if (typeof options !== 'object' || options === null) throw new GpuRendererError('INVALID_OPTION', `expected an options object, got ${describe(options)}`, { field: 'options' });
+  for (const key of Object.keys(options)) {
+    if (!OPTION_KEYS.includes(key)) throw new GpuRendererError('INVALID_OPTION', `unknown option (expected one of ${OPTION_KEYS.join(', ')})`, { field: key });
+  }
+  if (options.field !== undefined && typeof options.field !== 'string') throw new GpuRendererError('INVALID_OPTION', `expected a field name, got ${describe(options.field)}`, { field: 'field' });
   const field = options.field ?? 'source';
   if (!(typeof source === 'string' || source instanceof URL || source instanceof ArrayBuffer || source instanceof Uint8Array)) {
     throw new GpuRendererError('INVALID_ENVIRONMENT', 'expected a path, a URL, an ArrayBuffer or a Uint8Array', { field });
   }
-  const policy = options.negativeTexels ?? 'error';
-  if (policy !== 'error' && policy !== 'zero') throw new GpuRendererError('INVALID_OPTION', `expected 'error' or 'zero', got ${String(policy)}`, { field: 'negativeTexels' });
-  const bytes = await readSource(source, field);
+  const negative = options.negativeTexels ?? 'error';
+  if (negative !== 'error' && negative !== 'zero') throw new GpuRendererError('INVALID_OPTION', `expected 'error' or 'zero', got ${String(negative)}`, { field: 'negativeTexels' });
+  if (options.onNegativeTexels !== undefined && typeof options.onNegativeTexels !== 'function') {
+    throw new GpuRendererError('INVALID_OPTION', `expected a function, got ${describe(options.onNegativeTexels)}`, { field: 'onNegativeTexels' });
+  }
+  if (options.EXRLoader !== undefined && typeof options.EXRLoader !== 'function') throw new GpuRendererError('INVALID_OPTION', `expected three.js's EXRLoader class, got ${describe(options.EXRLoader)}`, { field: 'EXRLoader' });
+  const resourcePolicy = await resolveResourcePolicy(options.resourcePolicy);
+  const budget = budgetOf(resourcePolicy);
+  const { signal } = options;
+  signal?.throwIfAborted();
+  const site = { code: 'INVALID_ENVIRONMENT', field } as const;
+  let bytes: Uint8Array;
+  if (source instanceof Uint8Array) bytes = source;
+  else if (source instanceof ArrayBuffer) bytes = new Uint8Array(source);
+  else bytes = await readSource(await locateSource(source, site), derivePolicy(resourcePolicy, { budget }), site, signal);
   let image;
-  if (isRadianceHdr(bytes)) image = decodeRadianceHdr(bytes, field);
-  else if (isOpenExr(bytes)) image = await decodeOpenExr(bytes, field, options.EXRLoader);
+  if (isRadianceHdr(bytes)) image = decodeRadianceHdr(bytes, field, budget);
+  else if (isOpenExr(bytes)) image = await decodeOpenExr(bytes, field, options.EXRLoader, { budget, decodeTimeoutMs: resourcePolicy.decodeTimeoutMs, ...(signal ? { signal } : {}) });
   else throw new GpuRendererError('INVALID_ENVIRONMENT', 'not a Radiance .hdr ("#?" header) or OpenEXR file', { field });
   // The decoded texels are this call's own: zeroed in place (validation copies them anyway).
-  if (policy === 'zero') {
+  if (negative === 'zero') {
     // Zeroed whether or not anyone asks for the report (`f?.(g())` would skip g without f).
     const report = zeroNegativeChannels(image.data);
     options.onNegativeTexels?.(report);

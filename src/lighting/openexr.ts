@@ -1,5 +1,9 @@
 import { GpuRendererError } from '../errors/gpu-renderer-error.ts';
+import type { DecodeBudget } from '../io/resource-policy.ts';
+import { MAX_ENVIRONMENT_MAP_DIMENSION } from './environment-map.ts';
 import { halfToFloat } from './half-float.ts';
+import { validateOpenExr } from './openexr-header.ts';
+import { parseExrInWorker } from './openexr-worker.ts';
 import type { DecodedHdrImage } from './radiance-hdr.ts';
 
 /**
@@ -45,22 +49,53 @@ async function importExrLoader(field: string): Promise<ExrLoaderConstructor> {
   }
 }
 
-/** Decodes OpenEXR bytes to RGBA float32, top row first (EXR's y grows downwards). */
-export async function decodeOpenExr(bytes: Uint8Array, field = 'source', loader?: ExrLoaderConstructor): Promise<DecodedHdrImage> {
+/** Options of `decodeOpenExr`. */
+export interface DecodeOpenExrOptions {
+  /** A load's resource budget, charged with the decoded texels before they are allocated. */
+  budget?: DecodeBudget;
+  /** Deadline of the decoder thread (Node), ms; default 60000. */
+  decodeTimeoutMs?: number;
+  /** Terminates the decoder thread and rejects with the signal's reason. */
+  signal?: AbortSignal;
+}
+
+/**
+ * Decodes OpenEXR bytes to RGBA float32, top row first (EXR's y grows downwards). The file's
+ * structure is validated first (openexr-header.ts: what EXRLoader would read, so that it cannot
+ * read past the end or loop on the header), its size checked against the largest map side, and the
+ * decoded texels charged to the budget before EXRLoader allocates them. In Node, without a `loader`
+ * given, EXRLoader runs in a worker thread terminated at `decodeTimeoutMs` (openexr-worker.ts: its
+ * Huffman decoder can loop forever on corrupt data); elsewhere it runs on the calling thread.
+ */
+export async function decodeOpenExr(bytes: Uint8Array, field = 'source', loader?: ExrLoaderConstructor, options: DecodeOpenExrOptions = {}): Promise<DecodedHdrImage> {
   if (!isOpenExr(bytes)) throw new GpuRendererError('INVALID_ENVIRONMENT', 'OpenEXR: missing the magic number', { field });
-  const Loader = loader ?? (await importExrLoader(field));
-  let parsed: ReturnType<ExrLoaderLike['parse']>;
-  try {
-    const instance = new Loader();
-    instance.setDataType(THREE_FLOAT_TYPE);
+  const header = validateOpenExr(bytes, field, MAX_ENVIRONMENT_MAP_DIMENSION);
+  // EXRLoader's float output, this function's flipped copy and the validated map's copy.
+  options.budget?.charge(header.width * header.height * 48, { code: 'INVALID_ENVIRONMENT', field }, `the ${header.width} x ${header.height} OpenEXR texels`);
+  const unreadable = (reason: string, cause?: unknown): GpuRendererError =>
+    new GpuRendererError('INVALID_ENVIRONMENT', `OpenEXR: unreadable or truncated file (${reason})`, cause === undefined ? { field } : { field, cause });
+  let parsed: ReturnType<ExrLoaderLike['parse']> | undefined;
+  if (loader === undefined) {
+    const timeout = options.decodeTimeoutMs ?? 60_000;
     // EXRLoader reads through a DataView of the whole buffer: hand it exactly these bytes.
-    parsed = instance.parse(bytes.slice().buffer);
-  } catch (cause) {
-    const reason = cause instanceof Error ? cause.message : String(cause);
-    throw new GpuRendererError('INVALID_ENVIRONMENT', `OpenEXR: unreadable or truncated file (${reason})`, { field, cause });
+    const result = await parseExrInWorker(bytes.slice().buffer, timeout, options.signal);
+    if ('parsed' in result) parsed = result.parsed;
+    else if ('timedOut' in result) {
+      throw new GpuRendererError('INVALID_ENVIRONMENT', `OpenEXR: the decoder did not finish within ${timeout} ms (resourcePolicy.decodeTimeoutMs): the compressed data is corrupt`, { field });
+    } else if ('error' in result) throw unreadable(result.error);
+  }
+  if (parsed === undefined) {
+    const Loader = loader ?? (await importExrLoader(field));
+    try {
+      const instance = new Loader();
+      instance.setDataType(THREE_FLOAT_TYPE);
+      parsed = instance.parse(bytes.slice().buffer);
+    } catch (cause) {
+      throw unreadable(cause instanceof Error ? cause.message : String(cause), cause);
+    }
   }
   const { width, height, data } = parsed;
-  if (!(width > 0 && height > 0) || data.length !== width * height * 4 || (parsed.format !== undefined && parsed.format !== THREE_RGBA_FORMAT)) {
+  if (width !== header.width || height !== header.height || data.length !== width * height * 4 || (parsed.format !== undefined && parsed.format !== THREE_RGBA_FORMAT)) {
     throw new GpuRendererError('INVALID_ENVIRONMENT', `OpenEXR: decoder returned ${width} x ${height} with ${data.length} values, expected RGBA`, { field });
   }
   // EXRLoader flips rows for WebGL (its row 0 is the bottom); undo that.

@@ -1,4 +1,6 @@
 import { GpuRendererError } from '../errors/gpu-renderer-error.ts';
+import type { DecodeBudget } from '../io/resource-policy.ts';
+import { MAX_ENVIRONMENT_MAP_DIMENSION } from './environment-map.ts';
 
 /** A decoded HDR image: RGBA float32 (alpha 1), row-major, top row first. */
 export interface DecodedHdrImage {
@@ -28,9 +30,11 @@ export function isRadianceHdr(bytes: Uint8Array): boolean {
  * Supports `FORMAT=32-bit_rle_rgbe`, cumulative `EXPOSURE=` (divided out, so texels are the
  * original radiance), and the four row-major orientations `[+-]Y H [+-]X W` (the common one is
  * `-Y H +X W`, top row first). A texel is (mantissa + 0.5) * 2^(exponent - 136), Radiance's
- * colr_color. Errors: `INVALID_ENVIRONMENT` naming `field`.
+ * colr_color. Errors: `INVALID_ENVIRONMENT` naming `field`. The resolution is checked against the
+ * largest map side, and the texels charged to `budget` (a load's resource budget), before any
+ * allocation; each scanline needs at least 4 bytes, so a short file is refused before decoding.
  */
-export function decodeRadianceHdr(bytes: Uint8Array, field = 'source'): DecodedHdrImage {
+export function decodeRadianceHdr(bytes: Uint8Array, field = 'source', budget?: DecodeBudget): DecodedHdrImage {
   if (!isRadianceHdr(bytes)) invalid(field, 'missing the "#?" signature');
   let pos = 0;
   const readLine = (): string => {
@@ -64,6 +68,12 @@ export function decodeRadianceHdr(bytes: Uint8Array, field = 'source'): DecodedH
   const height = Number(m[2]);
   const width = Number(m[4]);
   if (!(width > 0 && height > 0)) invalid(field, `empty image "${resolution}"`);
+  if (width > MAX_ENVIRONMENT_MAP_DIMENSION || height > MAX_ENVIRONMENT_MAP_DIMENSION) {
+    invalid(field, `${width} x ${height} texels exceed the largest map side of ${MAX_ENVIRONMENT_MAP_DIMENSION} ("${resolution.slice(0, 60)}")`);
+  }
+  if (bytes.length - pos < 4 * height) invalid(field, `truncated pixel data: ${height} scanlines need at least ${4 * height} bytes, ${bytes.length - pos} follow the header`);
+  // RGBE bytes, the float texels and the validated map's copy.
+  budget?.charge(width * height * 36, { code: 'INVALID_ENVIRONMENT', field }, `the ${width} x ${height} Radiance HDR texels`);
   const topDown = m[1] === '-';
   const leftRight = m[3] === '+';
   const rgbe = new Uint8Array(width * height * 4);

@@ -1,4 +1,5 @@
-import { fail, requireNumberInRange, requireVec } from '../errors/validate.ts';
+import { describe, fail, requireNumberInRange, requireVec } from '../errors/validate.ts';
+import { maxCoordinateMagnitude } from '../scene/limits.ts';
 import type { WavefrontCameraInput } from '../scene/types.ts';
 
 export type Vec3 = [number, number, number];
@@ -27,8 +28,9 @@ const length = (a: Vec3): number => Math.hypot(a[0], a[1], a[2]);
 const scale = (a: Vec3, s: number): Vec3 => [a[0] * s, a[1] * s, a[2] * s];
 
 export function normalizeWavefrontCamera(input: WavefrontCameraInput | undefined, field = 'camera'): WavefrontCamera {
-  const c = input ?? defaultWavefrontCamera;
-  if (typeof c !== 'object' || c === null) fail('INVALID_OPTION', field, 'expected a camera object');
+  // Only undefined means "the default camera": null is refused like any other non-object.
+  const c = input === undefined ? defaultWavefrontCamera : input;
+  if (typeof c !== 'object' || c === null || Array.isArray(c)) fail('INVALID_OPTION', field, `expected a camera object, got ${describe(c)}`);
   for (const key of Object.keys(c)) {
     if (!['type', 'position', 'target', 'up', 'fovYDegrees', 'orthographicHeight'].includes(key)) fail('INVALID_OPTION', `${field}.${key}`, 'unknown camera key');
   }
@@ -37,6 +39,12 @@ export function normalizeWavefrontCamera(input: WavefrontCameraInput | undefined
   const orthographicHeight = c.orthographicHeight === undefined ? 2 : requireNumberInRange(c.orthographicHeight, `${field}.orthographicHeight`, { min: Number.MIN_VALUE, max: 1e18 });
   const position = requireVec(c.position, 3, `${field}.position`) as Vec3;
   const target = requireVec(c.target, 3, `${field}.target`) as Vec3;
+  // Coordinates the renderer supports (scene/limits.ts): beyond them float32 ray arithmetic overflows.
+  for (const [name, v] of [['position', position], ['target', target]] as const) {
+    v.forEach((x, i) => {
+      if (Math.abs(x) > maxCoordinateMagnitude) fail('INVALID_OPTION', `${field}.${name}[${i}]`, `${x} is beyond the supported coordinate range of +-${maxCoordinateMagnitude}`);
+    });
+  }
   const up = (c.up === undefined ? [0, 1, 0] : requireVec(c.up, 3, `${field}.up`)) as Vec3;
   const fovYDegrees = c.fovYDegrees === undefined ? 45 : requireNumberInRange(c.fovYDegrees, `${field}.fovYDegrees`, { min: 1e-3, max: 179 });
   const toTarget = sub(target, position);

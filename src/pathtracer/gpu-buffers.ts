@@ -21,6 +21,19 @@ export class GpuBufferSet {
     return buffer;
   }
 
+  /** Destroys `buffer` and stops counting it. */
+  release(buffer: GPUBuffer): void {
+    const at = this.buffers.findIndex((b) => b.buffer === buffer);
+    if (at >= 0) this.buffers.splice(at, 1);
+    buffer.destroy();
+  }
+
+  /** Destroys `old` and creates its successor of `size` bytes (a buffer that had to grow). */
+  replace(old: GPUBuffer, label: string, size: number, usage: number, category: 'scene' | 'queue' | 'frame'): GPUBuffer {
+    this.release(old);
+    return this.create(label, size, usage, category);
+  }
+
   bytes(category: 'scene' | 'queue' | 'frame'): number {
     return this.buffers.filter((b) => b.category === category).reduce((n, b) => n + b.buffer.size, 0);
   }

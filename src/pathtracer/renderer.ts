@@ -10,9 +10,9 @@ import { uploadTextureAtlas } from '../materials/textures/upload-texture-atlas.t
 import { isWavefrontAovName, wavefrontAovNames, type WavefrontAovName } from '../post/aovs.ts';
 import { normalizeWavefrontScene, type NormalizedScene } from '../scene/normalize-scene.ts';
 import type { WavefrontCameraInput } from '../scene/types.ts';
-import { allShaderFeatures, type ShaderFeatures } from '../shaders/features.ts';
+import { allShaderFeatures } from '../shaders/features.ts';
 import { createKernelBindGroups, type PathTracerResourceMap } from './bind-groups.ts';
-import { checkBufferLimits, planBuffers, queueCapacity, type BufferPlanInput, type PlannedBuffer, type PlannedBufferName } from './buffer-plan.ts';
+import { checkBufferLimits, planBuffers, queueCapacity, type PlannedBuffer, type PlannedBufferName } from './buffer-plan.ts';
 import { normalizeWavefrontCamera } from './camera.ts';
 import { resolveCanvasTarget } from './canvas-target.ts';
 import { createWavefrontPathTracingComputeConfig, type WavefrontPathTracingComputeConfig } from './config.ts';
@@ -29,12 +29,11 @@ import { WavefrontEncoder } from './frame-encoder.ts';
 import { GpuBufferSet, readGpuBuffer } from './gpu-buffers.ts';
 import { pathTracerPipelines, type PathTracerPipelines } from './pipelines.ts';
 import { FilmDisplay } from './presentation.ts';
-import { prepareScene, sceneExtent, type PreparedScene } from './scene/prepare-scene.ts';
+import { prepareGeometry, prepareMaterials, sceneExtent, type PreparedScene } from './scene/prepare-scene.ts';
 import { SceneAcceleration } from './scene/scene-acceleration.ts';
 import { packGeometryUpdate, type WavefrontGeometryUpdate, type WavefrontGeometryUpdateStats } from './scene/geometry-update.ts';
-import { vertexStreamBytes } from './scene/pack-vertices.ts';
-import { materialFeatures } from './scene/material-features.ts';
-import { materialHeapCells } from './scene/pack-materials.ts';
+import { lightingOptionsOf, prepareSceneUpdate, type SceneSources } from './scene-update.ts';
+import { planInput, sceneFeatures } from './scene-plan.ts';
 import { planListWaves, planWaves, tileCount, type Wave } from './tiling.ts';
 import type {
   WavefrontFrameStats,
@@ -45,36 +44,9 @@ import type {
   WavefrontRadianceImage,
   WavefrontRenderFrameOptions,
   WavefrontRendererSnapshot,
+  WavefrontSceneUpdate,
 } from './types.ts';
 import { packBounceUniforms, packDisplayUniforms, packFrameUniforms, packWaveUniforms } from './uniforms.ts';
-
-/** Sizes known from the validated scene, before the BVH is built: what the first limit check uses. */
-function planInput(config: WavefrontPathTracingComputeConfig, scene: NormalizedScene): BufferPlanInput {
-  let alpha = 0;
-  let lights = 0;
-  for (const inst of scene.instances) {
-    const material = scene.materials[inst.material ?? scene.meshMaterials[inst.mesh]!]!;
-    const triangles = scene.meshes[inst.mesh]!.triangleCount;
-    if (material.alphaMode !== 'OPAQUE') alpha += triangles;
-    if (material.emission.some((c) => c > 0)) lights += triangles;
-  }
-  return {
-    width: config.width,
-    height: config.height,
-    tileSize: config.tileSize,
-    maxDepth: config.maxDepth,
-    aovs: outputFeatures(config).aovs,
-    output: { moments: outputFeatures(config).moments, adaptive: config.output.adaptive !== null, denoise: config.output.denoise !== null, atrous: config.output.denoise?.denoiser === 'atrous' },
-    wavesPerSubmission: config.output.maxFramePassesPerSubmission,
-    ...vertexStreamBytes(scene.meshes),
-    primitiveCount: scene.triangleCount + scene.sceneObjects.length,
-    alphaPrimitiveCount: alpha,
-    instanceCount: scene.instances.length + scene.sceneObjects.length,
-    lightCount: lights,
-    // Cores, extension blocks and texture bindings (the exact heap, tables included, is checked after packing).
-    materialCells: materialHeapCells([...scene.materials, ...scene.sceneObjects.map((o) => o.material)]),
-  };
-}
 
 /**
  * Object id (the packed instance record's objectId: the instance's numeric id, else its index) and
@@ -93,33 +65,6 @@ function instanceIdTables(scene: NormalizedScene, prepared: PreparedScene): Inst
   return { objectIds, materialIds };
 }
 
-/** Output accumulation the options need: the denoiser's guides are the AOVs, its variance the moments. */
-function outputFeatures(config: WavefrontPathTracingComputeConfig): { aovs: boolean; moments: boolean } {
-  const denoise = config.output.denoise !== null;
-  return { aovs: config.aovs || denoise, moments: config.aovs || config.output.denoise?.denoiser === 'atrous' || config.output.adaptive !== null };
-}
-
-/** The shader features a scene needs; everything else is compiled out. */
-function sceneFeatures(prepared: PreparedScene, lighting: GpuLighting, config: WavefrontPathTracingComputeConfig): ShaderFeatures {
-  return {
-    FEATURE_ANALYTIC_SHAPES: prepared.uses.analyticShapes,
-    FEATURE_ALPHA_TEST: prepared.uses.alphaTest,
-    FEATURE_TEXTURES: prepared.uses.textures,
-    FEATURE_EMISSIVE_LIGHTS: prepared.uses.emissiveLights,
-    FEATURE_ENVIRONMENT: lighting.uses.environment,
-    FEATURE_ENVIRONMENT_MAP: lighting.uses.environmentMap,
-    FEATURE_SUN: lighting.uses.sun,
-    FEATURE_PORTALS: lighting.uses.portals,
-    FEATURE_PUNCTUAL_LIGHTS: lighting.uses.punctualLights,
-    FEATURE_AREA_LIGHTS: lighting.uses.areaLights,
-    FEATURE_LIGHT_TREE: lighting.uses.lightTree,
-    FEATURE_AOVS: outputFeatures(config).aovs,
-    FEATURE_FILM_MOMENTS: outputFeatures(config).moments,
-    FEATURE_ADAPTIVE_SAMPLING: config.output.adaptive !== null,
-    ...materialFeatures(prepared.uses.materials),
-  };
-}
-
 /**
  * Creates the wavefront path tracer: validates every option and the scene (typed errors naming the
  * field; nothing is allocated for invalid input), acquires or shares a device, checks every buffer
@@ -133,15 +78,16 @@ export async function createWavefrontPathTracingComputeRenderer(options: Wavefro
   const specialization = options.shaderSpecialization ?? 'scene';
   if (specialization !== 'scene' && specialization !== 'off') throw new GpuRendererError('INVALID_OPTION', 'expected "scene" or "off"', { field: 'shaderSpecialization' });
   const acquired = await acquireGpuDevice({
-    ...(options.device ? { device: options.device } : {}),
-    ...(options.powerPreference ? { powerPreference: options.powerPreference } : {}),
+    ...(options.device !== undefined ? { device: options.device } : {}),
+    ...(options.powerPreference !== undefined ? { powerPreference: options.powerPreference } : {}),
   });
   try {
     resolveWavefrontDenoiser(config.output, acquired.device);
     const limits = acquired.device.limits;
     const estimate = planInput(config, scene);
     checkBufferLimits(limits, planBuffers(estimate));
-    const prepared = await prepareScene(scene, { maxTextureDimension2D: limits.maxTextureDimension2D, maxTextureArrayLayers: limits.maxTextureArrayLayers }, { energyCompensation: config.energyCompensation, accelerationBuildMode: config.accelerationBuildMode });
+    const materials = prepareMaterials(scene, { maxTextureDimension2D: limits.maxTextureDimension2D, maxTextureArrayLayers: limits.maxTextureArrayLayers }, { energyCompensation: config.energyCompensation });
+    const prepared = await prepareGeometry(scene, materials, { accelerationBuildMode: config.accelerationBuildMode });
     const lighting = buildGpuLighting({ config: config.lighting, triangles: { records: prepared.lights, count: prepared.lightCount }, sceneCenter: prepared.sceneCenter, sceneRadius: prepared.sceneRadius });
     const plan = planBuffers({ ...estimate, materialCells: prepared.materials.byteLength / 16, lightCount: prepared.lightCount, lightHeapCells: lighting.heap.byteLength / 16, primitiveCount: prepared.primitiveCount });
     checkBufferLimits(limits, plan);
@@ -151,7 +97,8 @@ export async function createWavefrontPathTracingComputeRenderer(options: Wavefro
       config.output.adaptive ? createAdaptivePipelines(acquired.device, features) : null,
       config.output.denoise ? prepareWavefrontDenoiser(acquired.device, config.output.denoise, config.output.denoiseWeights, features) : null,
     ]);
-    const renderer = new WavefrontRenderer(acquired, config, scene, prepared, lighting, { ...pipelines, adaptive: adaptivePipelines, denoise: denoisePipelines }, plan);
+    const sources: SceneSources = { materials, features, lightingOptions: lightingOptionsOf(options) };
+    const renderer = new WavefrontRenderer(acquired, config, scene, sources, prepared, lighting, { ...pipelines, adaptive: adaptivePipelines, denoise: denoisePipelines }, plan);
     try {
       await renderer.createAcceleration();
     } catch (error) {
@@ -188,22 +135,26 @@ class WavefrontRenderer extends EventTarget implements WavefrontPathTracingRende
   private readonly ownsDevice: boolean;
   private readonly adapter: string;
   private config: WavefrontPathTracingComputeConfig;
-  private readonly scene: { instanceCount: number; sceneObjectCount: number; prepared: PreparedScene; normalized: NormalizedScene };
+  private scene: { instanceCount: number; sceneObjectCount: number; prepared: PreparedScene; normalized: NormalizedScene };
+  /** What updateScene rebuilds geometry from: the packed materials, the compiled features, the lighting options. */
+  private sources: SceneSources;
+  private readonly kernels: PathTracerPipelines['kernels'];
   /** The BVH on the device (build mode, refit and rebuild for geometry updates). */
   private acceleration: SceneAcceleration | null = null;
   private readonly capacity: number;
   private readonly buffers: GpuBufferSet;
   private readonly resources: Record<PlannedBufferName, GPUBuffer>;
+  private readonly resourceMap: PathTracerResourceMap;
   private readonly atlasTexture: GPUTexture;
   private readonly environmentTexture: GPUTexture;
   private lighting: GpuLighting;
   private readonly textureBytes: number;
-  private readonly encoderOfWaves: WavefrontEncoder;
+  private encoderOfWaves: WavefrontEncoder;
   private readonly display: FilmDisplay;
   private readonly timing: { querySet: GPUQuerySet; resolve: GPUBuffer } | null;
   private readonly adaptive: AdaptiveScheduler | null;
   private readonly denoiser: WavefrontDenoiser | null;
-  private readonly instanceIds: InstanceIds;
+  private instanceIds: InstanceIds;
   private frameCount = 0;
   private samplesAccumulated = 0;
   /** Pixel samples in the accumulation (differs from pixels x samplesAccumulated with adaptive sampling). */
@@ -218,6 +169,7 @@ class WavefrontRenderer extends EventTarget implements WavefrontPathTracingRende
     acquired: { device: GPUDevice; ownsDevice: boolean; adapterDescription: string; timestampQueries: boolean },
     config: WavefrontPathTracingComputeConfig,
     scene: NormalizedScene,
+    sources: SceneSources,
     prepared: PreparedScene,
     lighting: GpuLighting,
     pipelines: RendererPipelines,
@@ -228,6 +180,8 @@ class WavefrontRenderer extends EventTarget implements WavefrontPathTracingRende
     this.ownsDevice = acquired.ownsDevice;
     this.adapter = acquired.adapterDescription;
     this.config = config;
+    this.sources = sources;
+    this.kernels = pipelines.kernels;
     this.scene = { instanceCount: scene.instances.length, sceneObjectCount: scene.sceneObjects.length, prepared, normalized: scene };
     this.capacity = queueCapacity(config.width, config.height, config.tileSize);
     this.lighting = lighting;
@@ -290,6 +244,7 @@ class WavefrontRenderer extends EventTarget implements WavefrontPathTracingRende
       displayFilm: resources.film,
       displayPixels: resources.displayPixels,
     };
+    this.resourceMap = map;
     this.encoderOfWaves = new WavefrontEncoder(createKernelBindGroups(device, pipelines.kernels, map), resources.dispatchArgs, this.capacity);
     const out = config.output;
     this.display = new FilmDisplay(device, pipelines.resolve, map, out.denoise ? resources.denoised : undefined);
@@ -624,7 +579,61 @@ class WavefrontRenderer extends EventTarget implements WavefrontPathTracingRende
 
   updateCamera(camera: WavefrontCameraInput): void {
     this.assertUsable();
+    // A camera is required here (undefined would silently mean the default camera).
+    if (camera === undefined) throw new GpuRendererError('INVALID_OPTION', 'expected a camera object, got undefined', { field: 'camera' });
     this.config = { ...this.config, camera: normalizeWavefrontCamera(camera) };
+    this.writeFrameUniforms();
+    this.resetAccumulation();
+  }
+
+  async updateScene(update: WavefrontSceneUpdate): Promise<void> {
+    this.assertUsable();
+    const next = await prepareSceneUpdate(this.scene.normalized, this.sources, this.config, update, this.device.limits);
+    this.assertUsable();
+    // Every check passed: from here on nothing throws for the input.
+    const p = next.prepared;
+    let rebind = false;
+    const ensure = (name: PlannedBufferName, bytes: number): GPUBuffer => {
+      let buffer = this.resources[name];
+      if (buffer.size < bytes) {
+        buffer = this.buffers.replace(buffer, name, bytes, BufferUsage.STORAGE | BufferUsage.COPY_DST, 'scene');
+        this.resources[name] = buffer;
+        this.resourceMap[name] = buffer;
+        rebind = true;
+      }
+      return buffer;
+    };
+    const write = (name: PlannedBufferName, data: ArrayBuffer | ArrayBufferView): void => {
+      const bytes = ArrayBuffer.isView(data) ? data : new Uint8Array(data);
+      this.device.queue.writeBuffer(ensure(name, bytes.byteLength), 0, bytes.buffer, bytes.byteOffset, bytes.byteLength);
+    };
+    // The BVH buffers hold any tree of the new scene (2n - 1 nodes), so later rebuilds fit.
+    const gpuBuild = p.acceleration.mode === 'gpu';
+    ensure('primitives', next.plan.primitives.bytes);
+    ensure('bvhNodes', Math.max(next.plan.bvhNodes.bytes, p.bvhNodes.byteLength));
+    ensure('bvhParents', Math.max(next.plan.bvhParents.bytes, p.bvhParents.byteLength));
+    if (!gpuBuild) {
+      write('primitives', p.primitives);
+      write('bvhNodes', p.bvhNodes);
+      write('bvhParents', p.bvhParents);
+    }
+    write('alphaPrimitives', p.alphaPrimitives);
+    write('instances', p.instances);
+    write('indices', p.indices);
+    write('vertexStreams', p.vertexStreams);
+    write('lights', next.lighting.heap);
+    if (rebind) this.encoderOfWaves = new WavefrontEncoder(createKernelBindGroups(this.device, this.kernels, this.resourceMap), this.resources.dispatchArgs, this.capacity);
+    this.device.queue.writeBuffer(this.resources.lighting, 0, next.lighting.uniforms);
+    this.sources = { ...this.sources, lightingOptions: next.lightingOptions };
+    this.scene = { instanceCount: next.scene.instances.length, sceneObjectCount: next.scene.sceneObjects.length, prepared: p, normalized: next.scene };
+    this.lighting = next.lighting;
+    this.config = { ...this.config, lighting: next.lightingConfig, ...(next.camera ? { camera: next.camera } : {}) };
+    this.instanceIds = instanceIdTables(next.scene, p);
+    // A new tree for the new primitives, in the renderer's build mode (the GPU builds it in 'gpu').
+    this.acceleration?.destroy();
+    this.acceleration = null;
+    const r = this.resources;
+    this.acceleration = await SceneAcceleration.create(this.device, p, { primitives: r.primitives, bvhNodes: r.bvhNodes, bvhParents: r.bvhParents }, this.buffers);
     this.writeFrameUniforms();
     this.resetAccumulation();
   }

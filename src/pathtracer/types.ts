@@ -23,6 +23,15 @@ export type { BvhUpdateMode } from './scene/scene-acceleration.ts';
 
 export type CanvasTarget = HTMLCanvasElement | OffscreenCanvas | string;
 
+/** What `updateScene` replaces; what is left out stays. */
+export interface WavefrontSceneUpdate {
+  meshes?: WavefrontSceneDescription['meshes'];
+  /** Without `instances`, the current instances place the new meshes. */
+  instances?: WavefrontSceneDescription['instances'];
+  lights?: WavefrontSceneLightInput[];
+  camera?: WavefrontCameraInput;
+}
+
 /**
  * Renderer options: the scene (what a scene file or the glTF loader gives) plus render settings and
  * the lighting options (environment map or sky, portals, light sampler) and the output options
@@ -209,6 +218,18 @@ export interface WavefrontPathTracingRenderer extends EventTarget {
    * (typed error naming the field) leaves the renderer as it was.
    */
   updateGeometry(update: WavefrontGeometryUpdate): Promise<WavefrontGeometryUpdateStats>;
+  /**
+   * Replaces the scene's meshes, instances and/or lights, and the camera (what `updateGeometry`
+   * cannot: other meshes or triangle counts, other mesh materials, instances added or removed,
+   * moved punctual lights) without recreating the renderer: materials, textures, the environment
+   * and the compiled kernels stay; the geometry buffers are rewritten (reallocated only when they
+   * must grow), the BVH is built anew in the renderer's accelerationBuildMode, and the
+   * accumulation restarts. Validation errors name the field as at creation. A change that needs a
+   * shader feature the kernels were specialised without (the first alpha-tested or emissive
+   * surface, the first punctual light) is an INVALID_STATE error, and the renderer is left as it
+   * was: create a new one, or one with `shaderSpecialization: 'off'`.
+   */
+  updateScene(update: WavefrontSceneUpdate): Promise<void>;
   /** The raw linear mean radiance, RGBA float32 (alpha 1), top row first: never denoised. */
   readRadiance(): Promise<WavefrontRadianceImage>;
   /** The denoised linear radiance of the accumulation (needs `denoise`), RGBA float32 (alpha 1). */

@@ -249,13 +249,17 @@ export function normalizeMaterial(
   const code = options.code ?? 'INVALID_MATERIAL';
   const textureCount = options.textureCount ?? 0;
   const meshEmission = options.meshEmission;
-  const m = input ?? {};
+  // Only undefined means "the default material": null is a fault like any other non-object.
+  const m = input === undefined ? {} : input;
   if (typeof m !== 'object' || m === null || Array.isArray(m)) fail(code, field, `expected a material object, got ${describe(m)}`);
   for (const key of Object.keys(m)) {
     if (!coreKeys.has(key) && !extensionFactorKeys.has(key) && !(key in extensionTextureSlots)) fail(code, `${field}.${key}`, 'unknown material key');
   }
   const baseColor = color(m.baseColorFactor, `${field}.baseColorFactor`, 4, defaultMaterial.baseColor, code) as NormalizedMaterial['baseColor'];
-  if (baseColor[3] > 1) fail(code, `${field}.baseColorFactor[3]`, `alpha must be <= 1, got ${baseColor[3]}`);
+  // glTF 2.0 section 5.22.1: each component in [0, 1] (a reflectance above 1 would create energy).
+  baseColor.forEach((c, i) => {
+    if (c > 1) fail(code, `${field}.baseColorFactor[${i}]`, `${i === 3 ? 'alpha' : 'reflectance'} must be <= 1, got ${c}`);
+  });
   const metallic = m.metallicFactor === undefined ? 1 : requireNumberInRange(m.metallicFactor, `${field}.metallicFactor`, { min: 0, max: 1 }, code);
   const roughness = m.roughnessFactor === undefined ? 1 : requireNumberInRange(m.roughnessFactor, `${field}.roughnessFactor`, { min: 0, max: 1 }, code);
   const ior = m.ior === undefined ? 1.5 : requireNumberInRange(m.ior, `${field}.ior`, { min: 0 }, code);

@@ -17,6 +17,8 @@ export interface NormalizedScene {
   materialFields: string[];
   /** Material index of each mesh. */
   meshMaterials: number[];
+  /** How many of `materials` are the scene's own (the rest are inline mesh materials). */
+  sceneMaterialCount: number;
   /** The placements drawn: the scene's `instances`, or one identity placement per mesh. */
   instances: NormalizedInstance[];
   sceneObjects: NormalizedSceneObject[];
@@ -50,18 +52,50 @@ export function normalizeWavefrontScene(scene: Pick<WavefrontSceneDescription, '
     materialFields.push(`meshes[${i}].material`);
     return materials.length - 1;
   });
-  let instances: NormalizedInstance[];
-  if (scene.instances === undefined) {
-    const identity = affineFromColumnMajor(identityTransform, 'instances');
-    instances = meshes.map((mesh, i) => ({ id: mesh.id, mesh: i, material: null, ...identity }));
-  } else {
-    instances = arrayOf(scene.instances, 'instances', 'INVALID_INSTANCE').map((inst, i) =>
-      normalizeWavefrontInstance(inst as never, i, { meshes: meshes.length, materials: sceneMaterialCount }),
-    );
-  }
+  const instances = normalizeInstances(scene.instances, meshes, sceneMaterialCount);
   const sceneObjects = (arrayOf(scene.sceneObjects, 'sceneObjects', 'INVALID_SCENE_OBJECT') as (WavefrontSceneDescription['sceneObjects'] & object)).map((o, i) =>
     normalizeWavefrontSceneObject(o, i),
   );
   const triangleCount = instances.reduce((n, inst) => n + meshes[inst.mesh]!.triangleCount, 0);
-  return { meshes, materials, materialFields, meshMaterials, instances, sceneObjects, textures, images, triangleCount };
+  return { meshes, materials, materialFields, meshMaterials, sceneMaterialCount, instances, sceneObjects, textures, images, triangleCount };
+}
+
+function normalizeInstances(instances: unknown, meshes: readonly NormalizedMesh[], materialCount: number): NormalizedInstance[] {
+  if (instances === undefined) {
+    const identity = affineFromColumnMajor(identityTransform, 'instances');
+    return meshes.map((mesh, i) => ({ id: mesh.id, mesh: i, material: null, ...identity }));
+  }
+  return arrayOf(instances, 'instances', 'INVALID_INSTANCE').map((inst, i) => normalizeWavefrontInstance(inst as never, i, { meshes: meshes.length, materials: materialCount }));
+}
+
+/**
+ * A scene with new meshes and/or instances over the materials, textures and analytic objects of
+ * `base` (validated as `normalizeWavefrontScene` does); without new instances the current ones
+ * place the new meshes. Meshes refer to the scene's materials by
+ * index: an inline mesh material would change the material heap, which an update keeps, and is an
+ * INVALID_MESH error naming it.
+ */
+export function normalizeSceneUpdate(base: NormalizedScene, update: Pick<WavefrontSceneDescription, 'meshes' | 'instances'>): NormalizedScene {
+  const textureCount = base.textures.length;
+  let meshes = base.meshes;
+  let meshMaterials = base.meshMaterials;
+  if (update.meshes !== undefined) {
+    meshes = (arrayOf(update.meshes, 'meshes', 'INVALID_MESH') as (WavefrontSceneDescription['meshes'] & object)).map((m, i) =>
+      normalizeWavefrontMesh(m, i, `meshes[${i}]`, { materialCount: base.sceneMaterialCount, textureCount }),
+    );
+    meshMaterials = meshes.map((mesh, i) => {
+      if (typeof mesh.material !== 'number') fail('INVALID_MESH', `meshes[${i}].material`, 'a scene update keeps the material heap: refer to a scene material by index');
+      return mesh.material;
+    });
+  }
+  let instances = base.instances;
+  if (update.instances !== undefined) {
+    instances = normalizeInstances(update.instances, meshes, base.sceneMaterialCount);
+  } else {
+    instances.forEach((inst, i) => {
+      if (inst.mesh >= meshes.length) fail('INVALID_INSTANCE', `instances[${i}].mesh`, `mesh ${inst.mesh} is out of range: the update has ${meshes.length} meshes`);
+    });
+  }
+  const triangleCount = instances.reduce((n, inst) => n + meshes[inst.mesh]!.triangleCount, 0);
+  return { ...base, meshes, meshMaterials, instances, triangleCount };
 }

@@ -65,4 +65,6 @@ test('missing or undecodable resources are typed errors naming the field', async
   await rejects({ images: [{ uri: 'a.png', width: 2 }] }, 'images[0]');
   await rejects({ gltf: [{ src: 'x.glb', scale: 2 }] }, 'gltf[0].scale');
   await assert.rejects(loadSceneFile(join(dir, 'nothing.json')), (e: unknown) => e instanceof GpuRendererError && e.field === 'scene');
+  // A referenced glTF that cannot be read is named by its reference.
+  await assert.rejects(loadSceneFile(writeScene(dir, { gltf: [{ src: 'missing.glb' }] })), (e: unknown) => e instanceof GpuRendererError && e.field === 'gltf[0].src');
 });

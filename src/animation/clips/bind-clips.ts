@@ -1,8 +1,9 @@
 import { fail } from '../../errors/validate.ts';
-import type { AnimatedModel } from '../model/model-types.ts';
+import type { ModelMesh, ModelNode } from '../model/model-types.ts';
 import type { AnimationChannelData, AnimationClip } from './clip-types.ts';
 
-type ModelTargets = Pick<AnimatedModel, 'nodes' | 'meshes'>;
+/** What binding a clip needs of a model: node names and meshes, and each mesh's morph target count. */
+type ModelTargets = { readonly nodes: readonly Pick<ModelNode, 'name' | 'mesh'>[]; readonly meshes: readonly Pick<ModelMesh, 'targetCount'>[] };
 
 /**
  * Checks that every channel of a clip can drive the model: the node exists and a `weights` channel

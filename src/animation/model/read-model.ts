@@ -5,6 +5,7 @@ import { checkClipTargets } from '../clips/bind-clips.ts';
 import { readNodeHierarchy, readNodeRest } from './read-node-hierarchy.ts';
 import { readPrimitive } from './read-primitive.ts';
 import { readSkins } from './read-skins.ts';
+import { checkJointRange } from './skin-influences.ts';
 import type { AnimatedModel, ModelDrawable, ModelMaterialSummary, ModelMesh, ModelNode } from './model-types.ts';
 
 export interface ReadAnimatedModelOptions {
@@ -109,17 +110,8 @@ function sceneNodes(document: Document): Set<Node> | null {
 /** A skinned mesh's primitives must all carry joints, and every joint index must name a skin joint. */
 function checkSkinnedMesh(mesh: ModelMesh, meshIndex: number, jointCount: number, prefix: string): void {
   mesh.primitives.forEach((primitive, p) => {
-    const field = `${prefix}meshes[${meshIndex}].primitives[${p}].attributes`;
-    if (primitive.joints === null) fail('INVALID_MODEL', `${field}.JOINTS_0`, 'a skinned mesh needs JOINTS_0 and WEIGHTS_0');
-    const n = primitive.influences;
-    const joints = primitive.joints;
-    for (let i = 0; i < joints.length; i++) {
-      if (joints[i] < jointCount) continue;
-      if ((primitive.weights as Float32Array)[i] > 0) {
-        fail('INVALID_MODEL', `${field}.JOINTS_${i % n >= 4 ? 1 : 0}[${Math.floor(i / n)}]`, `joint index ${joints[i]} is out of range for a skin of ${jointCount} joints`);
-      }
-      // Unused slots (weight 0) often hold padding indices; point them at joint 0 so a GPU never reads past the palette.
-      joints[i] = 0;
-    }
+    const field = `${prefix}meshes[${meshIndex}].primitives[${p}]`;
+    if (primitive.joints === null) fail('INVALID_MODEL', `${field}.attributes.JOINTS_0`, 'a skinned mesh needs JOINTS_0 and WEIGHTS_0');
+    checkJointRange(primitive, field, jointCount);
   });
 }

@@ -56,3 +56,21 @@ export function readSkinInfluences(primitive: Primitive, field: string, vertexCo
   }
   return { influences, joints, weights };
 }
+
+/**
+ * Checks a skinned primitive's joint indices against its skin's joint count: an index out of range
+ * with a positive weight is an error naming the vertex (`field` is the primitive's, errors read
+ * `field.attributes.JOINTS_n[v]`); unused slots (weight 0) often hold padding indices and are
+ * pointed at joint 0 in place, so no consumer (a GPU palette lookup) reads past the palette.
+ */
+export function checkJointRange(influences: SkinInfluences, field: string, jointCount: number): void {
+  const { joints, weights, influences: n } = influences;
+  if (joints === null || weights === null) return;
+  for (let i = 0; i < joints.length; i++) {
+    if (joints[i] < jointCount) continue;
+    if (weights[i] > 0) {
+      fail('INVALID_MODEL', `${field}.attributes.JOINTS_${i % n >= 4 ? 1 : 0}[${Math.floor(i / n)}]`, `joint index ${joints[i]} is out of range for a skin of ${jointCount} joints`);
+    }
+    joints[i] = 0;
+  }
+}

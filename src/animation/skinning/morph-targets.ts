@@ -12,7 +12,7 @@ export interface MorphedStreams {
  * for positions, normals and tangent xyz. Normals and tangents are left unnormalised here; the
  * skinning step normalises them after transforming.
  */
-export function applyMorphTargets(primitive: ModelPrimitive, weights: ArrayLike<number>): MorphedStreams {
+export function applyMorphTargets(primitive: Pick<ModelPrimitive, 'vertexCount' | 'positions' | 'normals' | 'tangents' | 'targets'>, weights: ArrayLike<number>): MorphedStreams {
   const positions = Float64Array.from(primitive.positions);
   const normals = primitive.normals === null ? null : Float64Array.from(primitive.normals);
   const tangents = primitive.tangents === null ? null : Float64Array.from(primitive.tangents);

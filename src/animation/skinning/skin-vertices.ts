@@ -16,7 +16,7 @@ export interface SkinnedStreams {
  * w (bitangent sign) kept. A singular blend (zero-scaled joints collapse the vertex) keeps the
  * cofactor direction, which is the limit of the inverse transpose.
  */
-export function skinVertices(primitive: ModelPrimitive, streams: MorphedStreams, jointMatrices: Float64Array): SkinnedStreams {
+export function skinVertices(primitive: Pick<ModelPrimitive, 'vertexCount' | 'influences' | 'joints' | 'weights'>, streams: MorphedStreams, jointMatrices: Float64Array): SkinnedStreams {
   const n = primitive.vertexCount;
   const influences = primitive.influences;
   const joints = primitive.joints;

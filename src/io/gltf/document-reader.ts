@@ -12,8 +12,11 @@ import { locateCompressionFault } from './compression-faults.ts';
 import { failGltf, gltfError, pointer } from './errors.ts';
 import { SUPPORTED_EXTENSIONS } from './extensions.ts';
 import { isGlb, parseGlb } from './glb-container.ts';
-import { isObject, validateGltfJson } from './json-validation.ts';
-import { readResource, readUrl, sourceStringToUrl } from './resources.ts';
+import { isMeshoptFallback, validateGltfJson } from './json-validation.ts';
+import { budgetOf, derivePolicy, locateSource, readSource, type DecodeBudget, type ResolvedResourcePolicy } from '../resource-policy.ts';
+import { JSON_BYTES_PER_VALUE, MAX_JSON_DEPTH, scanJson } from '../json-scan.ts';
+import { chargeGeometry, chargeImages } from './decode-budget.ts';
+import { readResource } from './resources.ts';
 import { validateSparseIndices } from './sparse-indices.ts';
 
 /** What `loadGltfScene` accepts. */
@@ -61,16 +64,20 @@ function captureLogger(warnings: string[]): ILogger {
   return { debug: () => {}, info: () => {}, warn, error: warn };
 }
 
-async function sourceBytes(source: Exclude<GltfSource, Document>, signal: AbortSignal | undefined): Promise<{ bytes: Uint8Array; base: URL | undefined }> {
+async function sourceBytes(source: Exclude<GltfSource, Document>, policy: ResolvedResourcePolicy, signal: AbortSignal | undefined): Promise<{ bytes: Uint8Array; base: URL | undefined }> {
   if (source instanceof Uint8Array) return { bytes: source, base: undefined };
   if (source instanceof ArrayBuffer) return { bytes: new Uint8Array(source), base: undefined };
-  const url = source instanceof URL ? source : await sourceStringToUrl(source);
-  try {
-    return { bytes: await readUrl(url, signal), base: url };
-  } catch (error) {
-    signal?.throwIfAborted();
-    failGltf('', `cannot read ${url.href}: ${(error as Error).message}`, error);
-  }
+  const site = { code: 'INVALID_GLTF', field: '' } as const;
+  if (typeof source !== 'string' && !(source instanceof URL)) failGltf('', `expected a path, a URL, an ArrayBuffer, a Uint8Array or a Document, got ${source === null ? 'null' : typeof source}`);
+  const url = await locateSource(source, site);
+  return { bytes: await readSource(url, policy, site, signal), base: url };
+}
+
+/** Refuses JSON nested deeper than MAX_JSON_DEPTH and charges its parsed size before parsing. */
+function checkJsonShape(text: Uint8Array | string, field: string, budget: DecodeBudget): void {
+  const shape = scanJson(text);
+  if (shape.depth > MAX_JSON_DEPTH) failGltf(field, `the JSON nests ${shape.depth} levels deep; the loader reads at most ${MAX_JSON_DEPTH}`);
+  budget.charge(shape.values * JSON_BYTES_PER_VALUE, { code: 'INVALID_GLTF', field }, `parsing the JSON's ${shape.values} values`);
 }
 
 function parseJsonText(bytes: Uint8Array, field: string): unknown {
@@ -94,17 +101,24 @@ interface LoadedResources {
   buffers: Array<Uint8Array | undefined>;
 }
 
-async function loadResources(json: Record<string, unknown>, bufferByteLengths: number[], bin: Uint8Array | undefined, base: URL | undefined, signal: AbortSignal | undefined): Promise<LoadedResources> {
+async function loadResources(
+  json: Record<string, unknown>,
+  bufferByteLengths: number[],
+  bin: Uint8Array | undefined,
+  base: URL | undefined,
+  policy: ResolvedResourcePolicy,
+  signal: AbortSignal | undefined,
+): Promise<LoadedResources> {
   const resources: Record<string, Uint8Array> = {};
   const bufferDefs = (Array.isArray(json.buffers) ? json.buffers : []) as Array<Record<string, unknown>>;
   const buffers = await Promise.all(
     bufferDefs.map(async (buffer, i): Promise<Uint8Array | undefined> => {
       const at = pointer('buffers', i);
-      const meshoptFallback = isObject(buffer.extensions) && isObject(buffer.extensions.EXT_meshopt_compression) && buffer.extensions.EXT_meshopt_compression.fallback === true;
+      const meshoptFallback = isMeshoptFallback(json, buffer);
       let data: Uint8Array;
       if (typeof buffer.uri === 'string') {
         if (meshoptFallback && !buffer.uri.startsWith('data:')) return undefined; // never read: meshopt decodes instead
-        data = await readResource(buffer.uri, base, at, signal);
+        data = await readResource(buffer.uri, base, at, policy, signal);
         resources[buffer.uri] = data;
       } else if (meshoptFallback) {
         return undefined;
@@ -122,7 +136,7 @@ async function loadResources(json: Record<string, unknown>, bufferByteLengths: n
   await Promise.all(
     images.map(async (image, i) => {
       if (image.bufferView !== undefined || typeof image.uri !== 'string') return;
-      resources[image.uri] = await readResource(image.uri, base, pointer('images', i), signal);
+      resources[image.uri] = await readResource(image.uri, base, pointer('images', i), policy, signal);
     }),
   );
   return { resources: resources as JSONDocument['resources'], buffers };
@@ -140,17 +154,21 @@ function isDocument(source: GltfSource): source is Document {
 export async function readGltfDocument(
   source: GltfSource,
   warnings: string[],
-  options: { signal?: AbortSignal; decoders?: GltfDecoderModules } = {},
+  options: { signal?: AbortSignal; decoders?: GltfDecoderModules; policy: ResolvedResourcePolicy },
 ): Promise<ReadDocumentResult> {
   const { signal } = options;
   if (isDocument(source)) return { document: source, json: undefined };
-  const { bytes, base } = await sourceBytes(source, signal);
+  // One budget for everything this asset reads and decodes (shared with a scene file loading it).
+  const policy = options.policy.budget === undefined ? derivePolicy(options.policy, { budget: budgetOf(options.policy) }) : options.policy;
+  const budget = policy.budget!;
+  const { bytes, base } = await sourceBytes(source, policy, signal);
   signal?.throwIfAborted();
   let rawJson: unknown;
   let bin: Uint8Array | undefined;
   if (isGlb(bytes)) {
     const glb = parseGlb(bytes);
     bin = glb.bin;
+    checkJsonShape(glb.jsonText, 'glb:/chunks/0', budget);
     try {
       rawJson = JSON.parse(glb.jsonText);
     } catch (error) {
@@ -164,14 +182,17 @@ export async function readGltfDocument(
       const magic = bytes.byteLength >= 4 ? new DataView(bytes.buffer, bytes.byteOffset, 4).getUint32(0, true) : 0;
       failGltf('glb:/header/magic', `neither glTF JSON nor a GLB: expected magic 0x46546c67 ("glTF"), got 0x${magic.toString(16).padStart(8, '0')}`);
     }
+    checkJsonShape(bytes, '', budget);
     rawJson = parseJsonText(bytes, '');
   }
   const { json, bufferByteLengths } = validateGltfJson(rawJson);
+  chargeGeometry(json, budget);
   const used = Array.isArray(json.extensionsUsed) ? (json.extensionsUsed as unknown[]).filter((e): e is string => typeof e === 'string') : [];
   // A required one the renderer cannot express was refused during validation.
   for (const name of used) if (!SUPPORTED_EXTENSIONS.has(name)) warnings.push(`${name}: not supported; the asset is drawn without it`);
-  const { resources, buffers } = await loadResources(json, bufferByteLengths, bin, base, signal);
+  const { resources, buffers } = await loadResources(json, bufferByteLengths, bin, base, policy, signal);
   signal?.throwIfAborted();
+  chargeImages(json, buffers, resources as Record<string, Uint8Array>, policy, budget);
   validateSparseIndices(json, buffers);
 
   const dependencies: Record<string, unknown> = {};

@@ -9,6 +9,8 @@
 import type { WavefrontImageInput } from '../../scene/types.ts';
 import { failGltf } from './errors.ts';
 import { isNodeRuntime } from './resources.ts';
+import { checkImageHeader } from '../image-headers.ts';
+import { defaultResourcePolicy, type ResolvedResourcePolicy } from '../resource-policy.ts';
 
 export type ImageFormat = 'png' | 'jpeg' | 'webp' | 'ktx2' | 'avif' | 'unknown';
 
@@ -29,8 +31,12 @@ export interface DecodedImage {
   notes: string[];
 }
 
-/** Decodes `bytes`; `field` names the glTF image for errors. */
-export async function decodeImage(bytes: Uint8Array, field: string): Promise<DecodedImage> {
+/**
+ * Decodes `bytes`; `field` names the glTF image for errors. The header's size is checked against
+ * `policy` before a decoder allocates anything.
+ */
+export async function decodeImage(bytes: Uint8Array, field: string, policy: ResolvedResourcePolicy = defaultResourcePolicy): Promise<DecodedImage> {
+  checkImageHeader(bytes, { code: 'INVALID_GLTF', field }, policy);
   const format = sniffImageFormat(bytes);
   if (format === 'unknown') failGltf(field, 'the image is not PNG, JPEG, WebP, AVIF or KTX2 data');
   try {

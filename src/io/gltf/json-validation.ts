@@ -8,11 +8,18 @@
  */
 import { failGltf, pointer } from './errors.ts';
 import { SUPPORTED_EXTENSIONS } from './extensions.ts';
+import { validateGltfProperties } from './property-validation.ts';
 
 type Json = Record<string, unknown>;
 
 const COMPONENT_SIZES: Readonly<Record<number, number>> = { 5120: 1, 5121: 1, 5122: 2, 5123: 2, 5125: 4, 5126: 4, 5131: 2, 5130: 8 };
 const TYPE_SIZES: Readonly<Record<string, number>> = { SCALAR: 1, VEC2: 2, VEC3: 3, VEC4: 4, MAT2: 4, MAT3: 9, MAT4: 16 };
+
+/** A buffer the loader never reads: an EXT_meshopt_compression fallback, in an asset that uses the extension. */
+export function isMeshoptFallback(json: Json, buffer: unknown): boolean {
+  const used = Array.isArray(json.extensionsUsed) && json.extensionsUsed.includes('EXT_meshopt_compression');
+  return used && isObject(buffer) && isObject(buffer.extensions) && isObject(buffer.extensions.EXT_meshopt_compression) && buffer.extensions.EXT_meshopt_compression.fallback === true;
+}
 
 export function isObject(value: unknown): value is Json {
   return typeof value === 'object' && value !== null && !Array.isArray(value);
@@ -55,6 +62,9 @@ export function accessorElementSize(componentType: number, type: string): number
   return component * TYPE_SIZES[type];
 }
 
+/** Texture extensions that name the texture's image by `source`. */
+const IMAGE_SOURCE_EXTENSIONS: ReadonlySet<string> = new Set(['KHR_texture_basisu', 'EXT_texture_webp', 'EXT_texture_avif']);
+
 export interface ValidatedJson {
   json: Json;
   /** Declared byte lengths of the buffers. */
@@ -67,10 +77,16 @@ export function validateGltfJson(value: unknown): ValidatedJson {
   if (typeof asset.version !== 'string' || !/^2\.\d+$/.test(asset.version)) failGltf('/asset/version', `expected a glTF 2.x version string, got ${JSON.stringify(asset.version)}`);
   if (asset.minVersion !== undefined && asset.minVersion !== '2.0') failGltf('/asset/minVersion', `this loader reads glTF 2.0, the asset needs ${JSON.stringify(asset.minVersion)}`);
 
+  const used = list(json, 'extensionsUsed');
+  used.forEach((name, i) => {
+    if (typeof name !== 'string') failGltf(pointer('extensionsUsed', i), 'expected an extension name');
+  });
   const required = list(json, 'extensionsRequired');
   required.forEach((name, i) => {
     if (typeof name !== 'string') failGltf(pointer('extensionsRequired', i), 'expected an extension name');
     if (!SUPPORTED_EXTENSIONS.has(name)) failGltf(pointer('extensionsRequired', i), `required extension ${name} is not supported`);
+    // glTF 2.0 section 3.12: every required extension is also listed in extensionsUsed.
+    if (!used.includes(name)) failGltf(pointer('extensionsRequired', i), `${name} is required but not listed in extensionsUsed`);
   });
 
   const counts = {
@@ -94,7 +110,9 @@ export function validateGltfJson(value: unknown): ValidatedJson {
     return integer(buffer.byteLength, pointer('buffers', i, 'byteLength'), 1);
   });
 
-  list(json, 'bufferViews').forEach((entry, i) => validateBufferView(entry, i, bufferByteLengths, counts.buffers));
+  // EXT_meshopt_compression fallback buffers carry no data: only compressed views may use them.
+  const fallbacks = list(json, 'buffers').map((b) => isMeshoptFallback(json, b));
+  list(json, 'bufferViews').forEach((entry, i) => validateBufferView(entry, i, bufferByteLengths, counts.buffers, fallbacks));
   const views = list(json, 'bufferViews') as Json[];
   list(json, 'accessors').forEach((entry, i) => validateAccessor(entry, i, views));
   list(json, 'images').forEach((entry, i) => {
@@ -105,10 +123,16 @@ export function validateGltfJson(value: unknown): ValidatedJson {
   list(json, 'textures').forEach((entry, i) => {
     const texture = object(entry, pointer('textures', i));
     if (texture.source !== undefined) reference(texture.source, pointer('textures', i, 'source'), counts.images, 'images');
+    // glTF 2.0 section 5.29: without `source` an extension must supply the image, and only an
+    // extension the asset lists in extensionsUsed is read at all.
+    const extensionSource = isObject(texture.extensions) && Object.entries(texture.extensions).some(([name, ext]) => used.includes(name) && isObject(ext) && ext.source !== undefined);
+    if (texture.source === undefined && !extensionSource) failGltf(pointer('textures', i), 'the texture has no source image (no source, and no extension that supplies one)');
     if (texture.sampler !== undefined) reference(texture.sampler, pointer('textures', i, 'sampler'), counts.samplers, 'samplers');
     if (isObject(texture.extensions)) {
       for (const [name, ext] of Object.entries(texture.extensions)) {
-        if (isObject(ext) && ext.source !== undefined) reference(ext.source, pointer('textures', i, 'extensions', name, 'source'), counts.images, 'images');
+        // The image-supplying extensions require their `source` (each one's texture schema).
+        const required = IMAGE_SOURCE_EXTENSIONS.has(name) && used.includes(name);
+        if (isObject(ext) && (ext.source !== undefined || required)) reference(ext.source, pointer('textures', i, 'extensions', name, 'source'), counts.images, 'images');
       }
     }
   });
@@ -135,10 +159,11 @@ export function validateGltfJson(value: unknown): ValidatedJson {
     list(scene, 'nodes').forEach((node, j) => reference(node, pointer('scenes', i, 'nodes', j), counts.nodes, 'nodes'));
   });
   if (json.scene !== undefined) reference(json.scene, '/scene', counts.scenes, 'scenes');
+  validateGltfProperties(json, counts);
   return { json, bufferByteLengths };
 }
 
-function validateBufferView(entry: unknown, i: number, bufferByteLengths: number[], bufferCount: number): void {
+function validateBufferView(entry: unknown, i: number, bufferByteLengths: number[], bufferCount: number, fallbacks: boolean[]): void {
   const at = pointer('bufferViews', i);
   const view = object(entry, at);
   const buffer = reference(view.buffer, `${at}/buffer`, bufferCount, 'buffers');
@@ -152,10 +177,12 @@ function validateBufferView(entry: unknown, i: number, bufferByteLengths: number
     failGltf(at, `bytes ${byteOffset}..${byteOffset + byteLength} run past the end of buffer ${buffer} (${bufferByteLengths[buffer]} bytes)`);
   }
   const meshopt = isObject(view.extensions) ? view.extensions.EXT_meshopt_compression : undefined;
+  if (meshopt === undefined && fallbacks[buffer]) failGltf(`${at}/buffer`, `buffer ${buffer} is an EXT_meshopt_compression fallback without data; only a compressed view may use it`);
   if (meshopt !== undefined) {
     const mat = `${at}/extensions/EXT_meshopt_compression`;
     const m = object(meshopt, mat);
     const source = reference(m.buffer, `${mat}/buffer`, bufferCount, 'buffers');
+    if (fallbacks[source]) failGltf(`${mat}/buffer`, `buffer ${source} is a fallback without data; the compressed bytes must be in a buffer with data`);
     const offset = optionalInteger(m.byteOffset, `${mat}/byteOffset`, 0);
     const length = integer(m.byteLength, `${mat}/byteLength`, 1);
     if (offset + length > bufferByteLengths[source]) failGltf(mat, `compressed bytes ${offset}..${offset + length} run past the end of buffer ${source}`);
@@ -269,7 +296,14 @@ function validateMesh(entry: unknown, m: number, json: Json, counts: Record<stri
     const draco = isObject(primitive.extensions) ? primitive.extensions.KHR_draco_mesh_compression : undefined;
     if (draco !== undefined) {
       const dat = `${pat}/extensions/KHR_draco_mesh_compression`;
-      reference(object(draco, dat).bufferView, `${dat}/bufferView`, counts.bufferViews, 'bufferViews');
+      const d = object(draco, dat);
+      reference(d.bufferView, `${dat}/bufferView`, counts.bufferViews, 'bufferViews');
+      // Each compressed attribute decodes into the primitive's accessor of the same semantic
+      // (KHR_draco_mesh_compression, "attributes"): a semantic the primitive lacks has none.
+      for (const [semantic, id] of Object.entries(object(d.attributes, `${dat}/attributes`))) {
+        integer(id, `${dat}/attributes/${semantic}`);
+        if (!(semantic in attributes)) failGltf(`${dat}/attributes/${semantic}`, `the primitive has no ${semantic} attribute to decode into`);
+      }
     }
     const variants = isObject(primitive.extensions) ? primitive.extensions.KHR_materials_variants : undefined;
     if (variants !== undefined) {
@@ -344,11 +378,20 @@ function validateNodes(json: Json, counts: Record<string, number>): void {
       }
     }
   });
-  // Cycles: walk up from every node; a forest reaches a root within nodes.length steps.
+  // Cycles: walk up from every node until a root or a node already known to reach one; a walk
+  // that meets its own path is a cycle. Each node is walked once (linear in the node count, so a
+  // hierarchy 100 000 deep costs no more than a flat one).
+  const reachesRoot = new Uint8Array(nodes.length); // 0 unknown, 1 on the current walk, 2 reaches a root
+  const path: number[] = [];
   for (let i = 0; i < nodes.length; i++) {
-    let steps = 0;
-    for (let n = parent[i]; n !== -1; n = parent[n]) {
-      if (++steps > nodes.length) failGltf(pointer('nodes', i), 'the node hierarchy has a cycle');
+    path.length = 0;
+    let n = i;
+    while (n !== -1 && reachesRoot[n] === 0) {
+      reachesRoot[n] = 1;
+      path.push(n);
+      n = parent[n];
     }
+    if (n !== -1 && reachesRoot[n] === 1) failGltf(pointer('nodes', n), 'the node hierarchy has a cycle');
+    for (const k of path) reachesRoot[k] = 2;
   }
 }

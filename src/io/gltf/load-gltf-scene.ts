@@ -6,7 +6,8 @@ import type { GltfLoadOptions, GltfScene } from './gltf-scene-reader.ts';
 
 export type { GltfSource, GltfDecoderModules } from './document-reader.ts';
 export type { GltfBounds, GltfCameraInfo } from './cameras.ts';
-export type { GltfLoadOptions, GltfScene } from './gltf-scene-reader.ts';
+export type { GltfLoadOptions, GltfPoseAgainOptions, GltfScene } from './gltf-scene-reader.ts';
+export type { GltfAnimationInfo, GltfPoseOptions } from './posing.ts';
 
 /**
  * Loads a glTF 2.0 asset as a renderer scene. `source` is a file path (Node), a URL string or
@@ -17,6 +18,11 @@ export type { GltfLoadOptions, GltfScene } from './gltf-scene-reader.ts';
  * asset (`/accessors/7`, `/meshes/3/primitives/0/indices`, `/images/2`, `/extensionsRequired/0`),
  * or a `glb:` path for GLB container faults (`glb:/header/magic`, `glb:/chunks/0/chunkLength`).
  * Nothing is returned half-loaded. Bad options throw `INVALID_OPTION` naming the option.
+ *
+ * Animated and skinned assets are posed at `options.time` seconds (default 0) of
+ * `options.animation` (an index or name; default the first animation, `null` for none): skinned
+ * and morphed meshes are deformed on the CPU, animated nodes place meshes, cameras and lights.
+ * `scene.pose({ time })` poses the loaded asset again without reading it again.
  */
 export async function loadGltfScene(source: GltfSource, options: GltfLoadOptions = {}): Promise<GltfScene> {
   const { readGltfScene } = await import('./gltf-scene-reader.ts');

@@ -14,16 +14,26 @@ export interface FlatNode {
   world: Mat4;
 }
 
-export function flattenNodes(roots: readonly Node[], nodeIndex: ReadonlyMap<Node, number>): FlatNode[] {
+/**
+ * Depth-first, children in order (the order a recursive walk gives), with an explicit stack: a
+ * hierarchy thousands of nodes deep is legal glTF and must not exhaust the call stack.
+ * `posedWorld`, when given, supplies each node's world matrix (an animation's pose, see posing.ts)
+ * in place of the product of the authored matrices.
+ */
+export function flattenNodes(roots: readonly Node[], nodeIndex: ReadonlyMap<Node, number>, posedWorld?: (index: number) => ArrayLike<number>): FlatNode[] {
   const out: FlatNode[] = [];
-  const visit = (node: Node, parentWorld: readonly number[]): void => {
+  const stack: Array<{ node: Node; parentWorld: readonly number[] }> = [];
+  for (let r = roots.length - 1; r >= 0; r--) stack.push({ node: roots[r]!, parentWorld: IDENTITY });
+  while (stack.length > 0) {
+    const { node, parentWorld } = stack.pop()!;
     const visibility = node.getExtension<Visibility>('KHR_node_visibility');
-    if (visibility !== null && !visibility.getVisible()) return;
-    const world = multiply(parentWorld, node.getMatrix());
-    out.push({ node, index: nodeIndex.get(node) ?? -1, world });
-    for (const child of node.listChildren()) visit(child, world);
-  };
-  for (const root of roots) visit(root, IDENTITY);
+    if (visibility !== null && !visibility.getVisible()) continue;
+    const index = nodeIndex.get(node) ?? -1;
+    const world = posedWorld === undefined ? multiply(parentWorld, node.getMatrix()) : Array.from(posedWorld(index));
+    out.push({ node, index, world });
+    const children = node.listChildren();
+    for (let c = children.length - 1; c >= 0; c--) stack.push({ node: children[c]!, parentWorld: world });
+  }
   return out;
 }
 

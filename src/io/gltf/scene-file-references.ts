@@ -13,23 +13,31 @@
  *
  * `gltf` is one reference or an array; a reference is a string (`"model.glb"`) or an object with
  * `src` (resolved against the scene file's location), and optional `camera` (index or name),
- * `variant`, `scene` (index or name) and `transform` (column-major 4x4 placing the whole asset).
+ * `variant`, `scene` (index or name), `animation` (index or name, null for none) with `time`
+ * (seconds: the pose, as `loadGltfScene` takes them) and `transform` (column-major 4x4 placing the
+ * whole asset).
  * The assets are merged after the file's own content: their meshes, materials, textures and images
  * are appended with indices offset, their instances and lights placed by `transform`. The file's
  * `camera` wins; otherwise the first reference's camera is used (its chosen or default camera).
  */
 import { GpuRendererError, isGpuRendererError } from '../../errors/gpu-renderer-error.ts';
 import { describe } from '../../errors/validate.ts';
+import { validateLightingOptions } from '../../lighting/lighting-options.ts';
+import { normalizeWavefrontCamera } from '../../pathtracer/camera.ts';
+import { affineFromColumnMajor } from '../../scene/instance.ts';
+import { maxCoordinateMagnitude } from '../../scene/limits.ts';
 import type { WavefrontMaterialInput, WavefrontPunctualLightInput, WavefrontSceneDescription } from '../../scene/types.ts';
 import { loadGltfScene, type GltfLoadOptions, type GltfScene } from './load-gltf-scene.ts';
 import { determinant3, IDENTITY, multiply, normalize, transformDirection, transformPoint } from './matrix.ts';
-import { sourceStringToUrl } from './resources.ts';
+import { budgetOf, derivePolicy, folderOf, isInsideFolder, locateSource, resolveReference, resolveResourcePolicy, type ResourcePolicy } from '../resource-policy.ts';
 
 export interface GltfSceneReference {
   src: string;
   camera?: number | string;
   variant?: string;
   scene?: number | string;
+  animation?: number | string | null;
+  time?: number;
   /** Column-major 4x4 applied to the whole asset; default identity. */
   transform?: number[];
 }
@@ -46,7 +54,7 @@ export function parseGltfReferences(value: unknown, field = 'gltf'): GltfSceneRe
     if (typeof entry === 'string') return { src: entry };
     if (typeof entry !== 'object' || entry === null || Array.isArray(entry)) invalid(at, `expected a file name or { src, ... }, got ${describe(entry)}`);
     const object = entry as Record<string, unknown>;
-    const allowed = ['src', 'camera', 'variant', 'scene', 'transform'];
+    const allowed = ['src', 'camera', 'variant', 'scene', 'animation', 'time', 'transform'];
     for (const key of Object.keys(object)) if (!allowed.includes(key)) invalid(`${at}.${key}`, `unknown key ${JSON.stringify(key)} (expected one of ${allowed.join(', ')})`);
     if (typeof object.src !== 'string' || object.src === '') invalid(`${at}.src`, `expected a file name, got ${describe(object.src)}`);
     const ref: GltfSceneReference = { src: object.src };
@@ -55,6 +63,15 @@ export function parseGltfReferences(value: unknown, field = 'gltf'): GltfSceneRe
       if (v === undefined) continue;
       if (typeof v !== 'string' && !(typeof v === 'number' && Number.isInteger(v) && v >= 0)) invalid(`${at}.${key}`, `expected a name or an index, got ${describe(v)}`);
       ref[key] = v;
+    }
+    if (object.animation !== undefined) {
+      const v = object.animation;
+      if (v !== null && typeof v !== 'string' && !(typeof v === 'number' && Number.isInteger(v) && v >= 0)) invalid(`${at}.animation`, `expected a name, an index or null, got ${describe(v)}`);
+      ref.animation = v;
+    }
+    if (object.time !== undefined) {
+      if (typeof object.time !== 'number' || !Number.isFinite(object.time) || object.time < 0) invalid(`${at}.time`, `expected seconds >= 0, got ${describe(object.time)}`);
+      ref.time = object.time;
     }
     if (object.variant !== undefined) {
       if (typeof object.variant !== 'string') invalid(`${at}.variant`, `expected a variant name, got ${describe(object.variant)}`);
@@ -65,6 +82,7 @@ export function parseGltfReferences(value: unknown, field = 'gltf'): GltfSceneRe
       if (!Array.isArray(t) || t.length !== 16) invalid(`${at}.transform`, `expected 16 numbers (column-major 4x4), got ${describe(t)}`);
       t.forEach((x, k) => {
         if (typeof x !== 'number' || !Number.isFinite(x)) invalid(`${at}.transform[${k}]`, `expected a finite number, got ${describe(x)}`);
+        if (Math.abs(x) > maxCoordinateMagnitude) invalid(`${at}.transform[${k}]`, `|${x}| exceeds the largest supported coordinate ${maxCoordinateMagnitude}`);
       });
       if (t[3] !== 0 || t[7] !== 0 || t[11] !== 0 || t[15] !== 1 || determinant3(t) === 0) invalid(`${at}.transform`, 'expected an affine, invertible matrix (last row 0, 0, 0, 1)');
       ref.transform = t as number[];
@@ -81,17 +99,23 @@ function placeLight(light: WavefrontPunctualLightInput, m: readonly number[]): W
 }
 
 /**
- * Loads every reference (relative to `base`, the scene file's path or URL) and merges it into
- * `scene`. Returns the merged scene and the loaders' warnings, each prefixed with its reference.
- * Loader errors keep their code and JSON pointer; the message names the reference.
+ * Loads every reference (relative to `base`, the scene file's path or URL, and inside its folder
+ * under `resourcePolicy`: see src/io/resource-policy.ts) and merges it into `scene`. Returns the
+ * merged scene and the loaders' warnings, each prefixed with its reference. Loader errors keep
+ * their code and JSON pointer; the message names the reference. Without `base` only data URIs
+ * can be referenced.
  */
 export async function resolveGltfReferences(
   scene: WavefrontSceneDescription,
   references: readonly GltfSceneReference[],
-  options: { base?: string | URL; signal?: AbortSignal; load?: (source: URL, options: GltfLoadOptions) => Promise<GltfScene> } = {},
+  options: { base?: string | URL; signal?: AbortSignal; resourcePolicy?: ResourcePolicy; load?: (source: URL, options: GltfLoadOptions) => Promise<GltfScene> } = {},
 ): Promise<{ scene: WavefrontSceneDescription; warnings: string[] }> {
   const load = options.load ?? loadGltfScene;
-  const baseUrl = options.base === undefined ? undefined : options.base instanceof URL ? options.base : await sourceStringToUrl(options.base);
+  const baseUrl = options.base === undefined ? undefined : await locateSource(options.base, { code: 'INVALID_OPTION', field: 'base' });
+  const resolved = await resolveResourcePolicy(options.resourcePolicy);
+  // The assets share one budget: references cannot multiply what a scene file may decode.
+  const policy = derivePolicy(resolved, { budget: budgetOf(resolved) });
+  const folder = baseUrl === undefined ? undefined : folderOf(baseUrl);
   const out: WavefrontSceneDescription = {
     ...scene,
     meshes: [...(scene.meshes ?? [])],
@@ -106,14 +130,27 @@ export async function resolveGltfReferences(
   for (let i = 0; i < references.length; i++) {
     const ref = references[i];
     const label = `gltf[${i}] (${JSON.stringify(ref.src)})`;
-    const url = baseUrl === undefined ? await sourceStringToUrl(ref.src) : new URL(ref.src, baseUrl);
+    const site = { code: 'INVALID_SCENE_FILE', field: `gltf[${i}].src` } as const;
+    // A data URI carries the asset itself; anything else is a reference under the policy.
+    const url = /^data:/i.test(ref.src) ? await locateSource(ref.src, site) : resolveReference(ref.src, baseUrl, policy, site);
+    // The asset file itself must be a regular file inside the scene's folder (after links).
+    const assetPolicy = folder !== undefined && isInsideFolder(url, folder) ? derivePolicy(policy, { root: folder }) : policy;
     let gltf: GltfScene;
     try {
-      gltf = await load(url, { camera: ref.camera, variant: ref.variant, scene: ref.scene, signal: options.signal });
+      gltf = await load(url, {
+        ...(ref.camera !== undefined ? { camera: ref.camera } : {}),
+        ...(ref.variant !== undefined ? { variant: ref.variant } : {}),
+        ...(ref.scene !== undefined ? { scene: ref.scene } : {}),
+        ...(ref.animation !== undefined ? { animation: ref.animation } : {}),
+        ...(ref.time !== undefined ? { time: ref.time } : {}),
+        ...(options.signal !== undefined ? { signal: options.signal } : {}),
+        resourcePolicy: assetPolicy,
+      });
     } catch (error) {
       if (!isGpuRendererError(error)) throw error;
       const message = error.field ? error.message.slice(error.field.length + 2) : error.message;
-      throw new GpuRendererError(error.code, `in ${label}: ${message}`, error.field === undefined ? { cause: error } : { field: error.field, cause: error });
+      // A fault of the file as a whole (unreadable, not a glTF) names the reference that led to it.
+      throw new GpuRendererError(error.code, `in ${label}: ${message}`, { field: error.field ? error.field : site.field, cause: error });
     }
     for (const w of gltf.warnings) warnings.push(`${label}: ${w}`);
     const m = ref.transform ?? [...IDENTITY];
@@ -125,14 +162,30 @@ export async function resolveGltfReferences(
     out.textures!.push(...gltf.textures.map((t) => ({ ...t, image: typeof t.image === 'number' ? t.image + imageOffset : t.image })));
     out.materials!.push(...gltf.materials.map((material) => offsetTextureRefs(material, textureOffset)));
     out.meshes!.push(...gltf.meshes.map((mesh) => ({ ...mesh, material: typeof mesh.material === 'number' ? mesh.material + materialOffset : mesh.material })));
-    out.instances.push(...gltf.instances.map((inst) => ({ ...inst, mesh: inst.mesh + meshOffset, transform: multiply(m, inst.transform ?? IDENTITY), ...(inst.material === undefined ? {} : { material: inst.material + materialOffset }) })));
-    out.lights!.push(...gltf.lights.map((light) => placeLight(light, m)));
-    if (out.camera === undefined) {
-      const c = gltf.camera;
-      out.camera = { ...c, position: transformPoint(m, c.position), target: transformPoint(m, c.target), up: normalize(transformDirection(m, c.up ?? [0, 1, 0])) };
-    }
+    const placed = gltf.instances.map((inst) => ({ ...inst, mesh: inst.mesh + meshOffset, transform: multiply(m, inst.transform ?? IDENTITY), ...(inst.material === undefined ? {} : { material: inst.material + materialOffset }) }));
+    const lights = gltf.lights.map((light) => placeLight(light, m));
+    const camera = out.camera === undefined ? { ...gltf.camera, position: transformPoint(m, gltf.camera.position), target: transformPoint(m, gltf.camera.target), up: normalize(transformDirection(m, gltf.camera.up ?? [0, 1, 0])) } : undefined;
+    checkPlacement(placed, lights, camera, `gltf[${i}].transform`);
+    out.instances.push(...placed);
+    out.lights!.push(...lights);
+    if (camera !== undefined) out.camera = camera;
   }
   return { scene: out, warnings };
+}
+
+/**
+ * The asset as `transform` places it must stay within what the renderer supports (its checks on
+ * instances, lights and the camera): a fault is the reference's transform, named as such.
+ */
+function checkPlacement(instances: WavefrontSceneDescription['instances'] & object, lights: WavefrontPunctualLightInput[], camera: WavefrontSceneDescription['camera'], field: string): void {
+  try {
+    instances.forEach((inst, k) => affineFromColumnMajor(inst.transform ?? IDENTITY, `instances[${k}].transform`));
+    validateLightingOptions({ lights }, [0, 0, 0]);
+    if (camera !== undefined) normalizeWavefrontCamera(camera);
+  } catch (error) {
+    if (!isGpuRendererError(error)) throw error;
+    invalid(field, `places the asset where the renderer cannot use it (${error.message})`);
+  }
 }
 
 function offsetTextureRefs(material: WavefrontMaterialInput, offset: number): WavefrontMaterialInput {

@@ -55,6 +55,43 @@ function flatNormals(cornerPositions: Float32Array): Float32Array {
 }
 
 /**
+ * MikkTSpace over the triangles with area only. The `mikktspace` WebAssembly port traps (a Rust
+ * panic, "unreachable") when every triangle is degenerate, and the instance is corrupt afterwards
+ * (later calls fault on memory); zero-area triangles are never hit by a ray anyway. They get a unit
+ * tangent perpendicular to their normal (any one will do).
+ */
+function generateSkippingDegenerate(generate: GenerateTangents, positions: Float32Array, normals: Float32Array, uvs: Float32Array): Float32Array {
+  const triangles = positions.length / 9;
+  const keep: number[] = [];
+  for (let t = 0; t < triangles; t++) {
+    const p = 9 * t;
+    const e1 = [positions[p + 3] - positions[p], positions[p + 4] - positions[p + 1], positions[p + 5] - positions[p + 2]];
+    const e2 = [positions[p + 6] - positions[p], positions[p + 7] - positions[p + 1], positions[p + 8] - positions[p + 2]];
+    const area = Math.hypot(e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]);
+    if (area > 0 && Number.isFinite(area)) keep.push(t);
+  }
+  const out = new Float32Array(triangles * 12);
+  for (let c = 0; c < triangles * 3; c++) {
+    const n = [normals[3 * c], normals[3 * c + 1], normals[3 * c + 2]];
+    const axis = Math.abs(n[0]) < 0.9 ? [1, 0, 0] : [0, 1, 0];
+    const t = [axis[1] * n[2] - axis[2] * n[1], axis[2] * n[0] - axis[0] * n[2], axis[0] * n[1] - axis[1] * n[0]];
+    const len = Math.hypot(t[0], t[1], t[2]) || 1;
+    out.set([t[0] / len, t[1] / len, t[2] / len, 1], 4 * c);
+  }
+  if (keep.length === 0) return out;
+  const all = keep.length === triangles;
+  const pick = (values: Float32Array, size: number): Float32Array => {
+    if (all) return values;
+    const picked = new Float32Array(keep.length * 3 * size);
+    keep.forEach((t, k) => picked.set(values.subarray(t * 3 * size, (t + 1) * 3 * size), k * 3 * size));
+    return picked;
+  };
+  const generated = generate(pick(positions, 3), pick(normals, 3), pick(uvs, 2));
+  keep.forEach((t, k) => out.set(generated.subarray(k * 12, (k + 1) * 12), t * 12));
+  return out;
+}
+
+/**
  * Welds corners whose every attribute is bitwise equal: `remap` gives each corner its vertex,
  * `unique` each vertex its first corner. An open-addressing hash table over the attributes' 32-bit
  * words keeps this linear in time and free of per-corner allocations (million-triangle meshes).
@@ -112,7 +149,7 @@ export async function withMikkTSpaceTangents(streams: VertexStreams, texCoord: n
   const cornerPositions = unweld(streams.positions, 3, corners);
   const cornerNormals = streams.normals === undefined ? flatNormals(cornerPositions) : unweld(streams.normals, 3, corners);
   const cornerUvs = unweld(uvs, 2, corners);
-  const tangents = generate(cornerPositions, cornerNormals, cornerUvs);
+  const tangents = generateSkippingDegenerate(generate, cornerPositions, cornerNormals, cornerUvs);
   for (let w = 3; w < tangents.length; w += 4) tangents[w] = -tangents[w]!;
 
   const perCorner: Array<{ name: keyof VertexStreams; values: Float32Array; size: number }> = [

@@ -18,6 +18,7 @@ import type {
 } from '../../scene/types.ts';
 import { failGltf, pointer } from './errors.ts';
 import { decodeImage } from './image-decoding.ts';
+import type { ResolvedResourcePolicy } from '../resource-policy.ts';
 
 const WRAP: Readonly<Record<number, WavefrontWrapMode>> = { 10497: 'repeat', 33071: 'clamp-to-edge', 33648: 'mirrored-repeat' };
 const MAG: Readonly<Record<number, WavefrontMagFilter>> = { 9728: 'nearest', 9729: 'linear' };
@@ -58,10 +59,12 @@ export class TextureTable {
   private readonly textureIndex = new Map<string, number>();
   private readonly allImages: readonly Texture[];
   private readonly warnings: string[];
+  private readonly policy: ResolvedResourcePolicy | undefined;
 
-  constructor(allImages: readonly Texture[], warnings: string[]) {
+  constructor(allImages: readonly Texture[], warnings: string[], policy?: ResolvedResourcePolicy) {
     this.allImages = allImages;
     this.warnings = warnings;
+    this.policy = policy;
   }
 
   /** Decodes the image once. */
@@ -80,7 +83,7 @@ export class TextureTable {
     // Unreadable external images were rejected while reading the asset; this is a Document passed
     // in whose image was never loaded.
     if (bytes === null) failGltf(at, `the image has no data${texture.getURI() ? ` (${texture.getURI()})` : ''}`);
-    const { image, notes } = await decodeImage(bytes, at);
+    const { image, notes } = await decodeImage(bytes, at, this.policy);
     for (const note of notes) this.warnings.push(`${at}: ${note}`);
     this.images.push(image);
     return this.images.length - 1;

@@ -7,7 +7,7 @@ import type { NormalizedScene } from '../../scene/normalize-scene.ts';
 import { flattenPrimitives, type FlatPrimitives } from './flatten-primitives.ts';
 import { buildLightTable } from './light-table.ts';
 import { packInstances } from './pack-instances.ts';
-import { packMaterialTables, packMaterials, planMaterials, textureUsages, type MaterialFeatureUses } from './pack-materials.ts';
+import { packMaterialTables, packMaterials, planMaterials, textureUsages, type MaterialFeatureUses, type TextureInfoOffsets } from './pack-materials.ts';
 import { packVertexStreams } from './pack-vertices.ts';
 
 /** Everything the path tracer uploads for a scene, packed on the CPU. */
@@ -44,11 +44,19 @@ export interface PreparedScene {
 /** Where the BVH is built: on the CPU and uploaded (default), or on the GPU (src/accel/gpu-build/). */
 export type AccelerationBuildMode = 'cpu-upload' | 'gpu';
 
-export async function prepareScene(
-  scene: NormalizedScene,
-  limits: AtlasLimits,
-  options: { signal?: AbortSignal; energyCompensation?: boolean; accelerationBuildMode?: AccelerationBuildMode } = {},
-): Promise<PreparedScene> {
+/** The material half of a prepared scene: the material heap and the texture atlas, independent of geometry. */
+export interface PreparedMaterials {
+  heap: Vec4Heap;
+  atlas: TextureAtlas;
+  infoOffset: TextureInfoOffsets;
+  materialOffsets: number[];
+  objectMaterialOffsets: number[];
+  uses: { textures: boolean; materials: MaterialFeatureUses };
+  warnings: string[];
+}
+
+/** Packs the materials (of the scene and its analytic objects) and the texture atlas. */
+export function prepareMaterials(scene: NormalizedScene, limits: AtlasLimits, options: { energyCompensation?: boolean } = {}): PreparedMaterials {
   const warnings: string[] = [];
   const heap = new Vec4Heap();
   const objectMaterials = scene.sceneObjects.map((o) => o.material);
@@ -63,6 +71,20 @@ export async function prepareScene(
   const infoOffset = (texture: number, srgb: boolean): number => atlas.infoOffset(texture, srgb);
   const materialOffsets = packMaterials(heap, scene.materials, infoOffset, materialPlan);
   const objectMaterialOffsets = packMaterials(heap, objectMaterials, infoOffset, materialPlan);
+  return { heap, atlas, infoOffset, materialOffsets, objectMaterialOffsets, uses: { textures: usages.length > 0, materials: materialPlan.uses }, warnings };
+}
+
+/**
+ * Packs the geometry against prepared materials: vertex streams, world-space primitives and (in
+ * 'cpu-upload' mode) their BVH, instance records and the emissive triangles. A scene whose meshes
+ * and instances are replaced (`updateScene`) re-runs only this half.
+ */
+export async function prepareGeometry(
+  scene: NormalizedScene,
+  materials: PreparedMaterials,
+  options: { signal?: AbortSignal; accelerationBuildMode?: AccelerationBuildMode } = {},
+): Promise<PreparedScene> {
+  const { infoOffset } = materials;
   const streams = packVertexStreams(scene.meshes);
   const lights = buildLightTable(scene, infoOffset);
   const flat = flattenPrimitives(scene, infoOffset);
@@ -76,11 +98,11 @@ export async function prepareScene(
     bvhNodes: nodes,
     bvhParents: gpu ? new Uint32Array(0) : bvhParentLinks(nodes, bvh.nodeCount),
     alphaPrimitives: flat.alphaPrimitives,
-    instances: packInstances(scene, streams, materialOffsets, objectMaterialOffsets, lights.lightBase),
+    instances: packInstances(scene, streams, materials.materialOffsets, materials.objectMaterialOffsets, lights.lightBase),
     indices: streams.indices,
     vertexStreams: streams.vertexStreams,
-    materials: heap.finish(),
-    atlas,
+    materials: materials.heap.finish(),
+    atlas: materials.atlas,
     lights: lights.records,
     lightCount: lights.count,
     lightPower: lights.totalPower,
@@ -90,9 +112,17 @@ export async function prepareScene(
     acceleration: { mode: gpu ? 'gpu' : 'cpu-upload', order: gpu ? null : bvh.triangleOrder },
     sceneCenter,
     sceneRadius,
-    uses: { analyticShapes: scene.sceneObjects.length > 0, alphaTest: flat.alphaCount > 0, textures: usages.length > 0, emissiveLights: lights.count > 0, materials: materialPlan.uses },
-    warnings,
+    uses: { analyticShapes: scene.sceneObjects.length > 0, alphaTest: flat.alphaCount > 0, textures: materials.uses.textures, emissiveLights: lights.count > 0, materials: materials.uses.materials },
+    warnings: materials.warnings,
   };
+}
+
+export async function prepareScene(
+  scene: NormalizedScene,
+  limits: AtlasLimits,
+  options: { signal?: AbortSignal; energyCompensation?: boolean; accelerationBuildMode?: AccelerationBuildMode } = {},
+): Promise<PreparedScene> {
+  return prepareGeometry(scene, prepareMaterials(scene, limits, options), options);
 }
 
 /** Centre and radius of the scene's bounding sphere (radius 1 for an empty scene). */

@@ -37,15 +37,17 @@ export class SceneAcceleration {
   private readonly buffers: SceneBvhBuffers;
   private readonly builder: GpuBvhBuilder | null;
   private readonly source: GPUBuffer | null;
+  private readonly owner: GpuBufferSet | null;
   private refitter: GpuBvhRefitter | null = null;
 
-  private constructor(device: GPUDevice, prepared: PreparedScene, buffers: SceneBvhBuffers, gpu: { builder: GpuBvhBuilder; source: GPUBuffer } | null) {
+  private constructor(device: GPUDevice, prepared: PreparedScene, buffers: SceneBvhBuffers, gpu: { builder: GpuBvhBuilder; source: GPUBuffer; owner: GpuBufferSet } | null) {
     this.device = device;
     this.prepared = prepared;
     this.buffers = buffers;
     this.mode = prepared.acceleration.mode;
     this.builder = gpu?.builder ?? null;
     this.source = gpu?.source ?? null;
+    this.owner = gpu?.owner ?? null;
   }
 
   /**
@@ -56,7 +58,7 @@ export class SceneAcceleration {
     if (prepared.acceleration.mode !== 'gpu') return new SceneAcceleration(device, prepared, buffers, null);
     const source = owner.upload('bvhSource', prepared.primitives, BufferUsage.STORAGE, 'scene');
     const builder = await GpuBvhBuilder.create(device, { source, primitiveCount: prepared.primitiveCount, primitives: buffers.primitives, nodes: buffers.bvhNodes, parents: buffers.bvhParents });
-    const acceleration = new SceneAcceleration(device, prepared, buffers, { builder, source });
+    const acceleration = new SceneAcceleration(device, prepared, buffers, { builder, source, owner });
     await acceleration.buildOnGpu();
     return acceleration;
   }
@@ -105,5 +107,7 @@ export class SceneAcceleration {
   destroy(): void {
     this.builder?.destroy();
     this.refitter?.destroy();
+    // The scene-order records (a scene replaced by updateScene gets a new acceleration).
+    if (this.source) this.owner?.release(this.source);
   }
 }

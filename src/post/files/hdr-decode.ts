@@ -4,6 +4,7 @@
  * result is the radiance that was written.
  */
 import { GpuRendererError } from '../../errors/gpu-renderer-error.ts';
+import { defaultResourcePolicy } from '../../io/resource-policy.ts';
 import type { LinearRgbaImage } from './linear-image.ts';
 
 function invalid(message: string): never {
@@ -27,15 +28,20 @@ function rgbeToLinear(scanline: Uint8Array, width: number, exposure: number, out
   }
 }
 
-/** Decodes a Radiance .hdr file into linear RGBA float32, top row first (alpha 1). */
-export function decodeHdr(bytes: Uint8Array): LinearRgbaImage {
+/**
+ * Decodes a Radiance .hdr file into linear RGBA float32, top row first (alpha 1). A resolution
+ * over `limits.maxImageDimension` (default 16384) per side or `limits.maxDecodedBytes` (default
+ * 2 GiB) of texels is refused before anything is allocated.
+ */
+export function decodeHdr(bytes: Uint8Array, limits: { maxImageDimension?: number; maxDecodedBytes?: number } = {}): LinearRgbaImage {
   if (!(bytes instanceof Uint8Array)) throw new GpuRendererError('INVALID_OPTION', 'expected a Uint8Array', { field: 'bytes' });
   let pos = 0;
   const readLine = (): string => {
     const start = pos;
     while (pos < bytes.length && bytes[pos] !== 0x0a) pos++;
     if (pos >= bytes.length) invalid('header ends early');
-    return String.fromCharCode(...bytes.subarray(start, pos++));
+    // latin1, not String.fromCharCode(...bytes): a long line would overflow the argument list.
+    return new TextDecoder('latin1').decode(bytes.subarray(start, pos++));
   };
   const first = readLine();
   if (!first.startsWith('#?')) invalid('missing the #? signature');
@@ -50,6 +56,10 @@ export function decodeHdr(bytes: Uint8Array): LinearRgbaImage {
   const height = Number(resolution[1]);
   const width = Number(resolution[2]);
   if (width < 1 || height < 1) invalid('empty image');
+  const maxSide = limits.maxImageDimension ?? defaultResourcePolicy.maxImageDimension;
+  if (width > maxSide || height > maxSide) invalid(`${width} x ${height} texels exceed the largest side of ${maxSide}`);
+  if (width * height * 16 > (limits.maxDecodedBytes ?? defaultResourcePolicy.maxDecodedBytes)) invalid(`${width} x ${height} float texels exceed the decoded-bytes limit`);
+  if (bytes.length - pos < 4 * height) invalid(`pixel data ends early: ${height} scanlines need at least ${4 * height} bytes`);
   const data = new Float32Array(width * height * 4);
   const scanline = new Uint8Array(width * 4);
   const need = (n: number): void => {

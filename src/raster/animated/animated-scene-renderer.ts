@@ -5,8 +5,9 @@
  * uploads its joint matrices and morph weights (GPU skinning), places rigid parts, props and the
  * terrain, follows the camera rig, and completes the snapshot with what is really drawn.
  */
-import { WebIO, type Document } from '@gltf-transform/core';
-import { ALL_EXTENSIONS } from '@gltf-transform/extensions';
+import type { Document } from '@gltf-transform/core';
+import { readGltfDocument } from '../../io/gltf/document-reader.ts';
+import { defaultResourcePolicy } from '../../io/resource-policy.ts';
 import { mat4d } from 'wgpu-matrix';
 import { createAnimatedSceneCore, type AnimatedSceneCore, type AnimatedSceneFrame } from '../../animation/animated-scene-core.ts';
 import type { CameraRigOutput } from '../../animation/camera/camera-types.ts';
@@ -37,8 +38,10 @@ async function toDocument(asset: unknown): Promise<Document> {
   if (typeof asset === 'object' && asset !== null && typeof (asset as Document).getRoot === 'function') return asset as Document;
   if (asset instanceof ArrayBuffer || asset instanceof Uint8Array) {
     const bytes = asset instanceof Uint8Array ? asset : new Uint8Array(asset);
+    // The glTF loader's reader: the validated container and JSON, the default resource policy
+    // (bytes reference no external files) and its decoded-bytes budget.
     try {
-      return await new WebIO().registerExtensions(ALL_EXTENSIONS).readBinary(bytes);
+      return (await readGltfDocument(bytes, [], { policy: defaultResourcePolicy })).document;
     } catch (cause) {
       throw new GpuRendererError('INVALID_OPTION', `modelAsset is not a readable GLB: ${(cause as Error).message}`, { field: 'modelAsset', cause });
     }

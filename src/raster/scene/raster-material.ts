@@ -47,7 +47,7 @@ function rgb(value: unknown, field: string, fallback: [number, number, number], 
 
 /** Validates one material for the raster renderer; errors are INVALID_MATERIAL naming `field`. */
 export function normalizeRasterMaterial(input: WavefrontMaterialInput | undefined, field: string, textureCount: number): RasterMaterial {
-  const m = (input ?? {}) as Record<string, unknown>;
+  const m = (input === undefined ? {} : input) as Record<string, unknown>;
   if (typeof m !== 'object' || m === null || Array.isArray(m)) fail('INVALID_MATERIAL', field, `expected a material object, got ${describe(m)}`);
   const coreInput: Record<string, unknown> = {};
   for (const [key, value] of Object.entries(m)) {

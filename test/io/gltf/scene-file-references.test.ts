@@ -55,7 +55,7 @@ test('resolveGltfReferences merges assets with offset indices and placed instanc
     assertClose(scene.lights![1].position!, [10, 2, 0], 0, 'light placed by the transform');
     assert.ok(scene.camera !== undefined, 'camera from the first reference');
 
-    await rejectsWith(resolveGltfReferences(base, [{ src: 'missing.glb' }], { base: join(dir, 'scene.json') }), 'INVALID_GLTF', '', /in gltf\[0\] \("missing.glb"\): cannot read/);
+    await rejectsWith(resolveGltfReferences(base, [{ src: 'missing.glb' }], { base: join(dir, 'scene.json') }), 'INVALID_GLTF', 'gltf[0].src', /in gltf\[0\] \("missing.glb"\): cannot read/);
   } finally {
     await rm(dir, { recursive: true, force: true });
   }

@@ -1,0 +1,69 @@
+/**
+ * What a scene asks of the path tracer before anything is allocated: the buffer sizes it implies
+ * (checked against the device's limits) and the shader features it needs (the rest are compiled out).
+ */
+import type { GpuLighting } from '../lighting/gpu-lighting.ts';
+import type { NormalizedScene } from '../scene/normalize-scene.ts';
+import type { ShaderFeatures } from '../shaders/features.ts';
+import type { BufferPlanInput } from './buffer-plan.ts';
+import type { WavefrontPathTracingComputeConfig } from './config.ts';
+import { materialFeatures } from './scene/material-features.ts';
+import { materialHeapCells } from './scene/pack-materials.ts';
+import { vertexStreamBytes } from './scene/pack-vertices.ts';
+import type { PreparedScene } from './scene/prepare-scene.ts';
+
+/** Sizes known from the validated scene, before the BVH is built: what the first limit check uses. */
+export function planInput(config: WavefrontPathTracingComputeConfig, scene: NormalizedScene): BufferPlanInput {
+  let alpha = 0;
+  let lights = 0;
+  for (const inst of scene.instances) {
+    const material = scene.materials[inst.material ?? scene.meshMaterials[inst.mesh]!]!;
+    const triangles = scene.meshes[inst.mesh]!.triangleCount;
+    if (material.alphaMode !== 'OPAQUE') alpha += triangles;
+    if (material.emission.some((c) => c > 0)) lights += triangles;
+  }
+  return {
+    width: config.width,
+    height: config.height,
+    tileSize: config.tileSize,
+    maxDepth: config.maxDepth,
+    aovs: outputFeatures(config).aovs,
+    output: { moments: outputFeatures(config).moments, adaptive: config.output.adaptive !== null, denoise: config.output.denoise !== null, atrous: config.output.denoise?.denoiser === 'atrous' },
+    wavesPerSubmission: config.output.maxFramePassesPerSubmission,
+    ...vertexStreamBytes(scene.meshes),
+    primitiveCount: scene.triangleCount + scene.sceneObjects.length,
+    alphaPrimitiveCount: alpha,
+    instanceCount: scene.instances.length + scene.sceneObjects.length,
+    lightCount: lights,
+    // Cores, extension blocks and texture bindings (the exact heap, tables included, is checked after packing).
+    materialCells: materialHeapCells([...scene.materials, ...scene.sceneObjects.map((o) => o.material)]),
+  };
+}
+
+/** Output accumulation the options need: the denoiser's guides are the AOVs, its variance the moments. */
+export function outputFeatures(config: WavefrontPathTracingComputeConfig): { aovs: boolean; moments: boolean } {
+  const denoise = config.output.denoise !== null;
+  return { aovs: config.aovs || denoise, moments: config.aovs || config.output.denoise?.denoiser === 'atrous' || config.output.adaptive !== null };
+}
+
+/** The shader features a scene needs; everything else is compiled out. */
+export function sceneFeatures(prepared: PreparedScene, lighting: GpuLighting, config: WavefrontPathTracingComputeConfig): ShaderFeatures {
+  return {
+    FEATURE_ANALYTIC_SHAPES: prepared.uses.analyticShapes,
+    FEATURE_ALPHA_TEST: prepared.uses.alphaTest,
+    FEATURE_TEXTURES: prepared.uses.textures,
+    FEATURE_EMISSIVE_LIGHTS: prepared.uses.emissiveLights,
+    FEATURE_ENVIRONMENT: lighting.uses.environment,
+    FEATURE_ENVIRONMENT_MAP: lighting.uses.environmentMap,
+    FEATURE_SUN: lighting.uses.sun,
+    FEATURE_PORTALS: lighting.uses.portals,
+    FEATURE_PUNCTUAL_LIGHTS: lighting.uses.punctualLights,
+    FEATURE_AREA_LIGHTS: lighting.uses.areaLights,
+    FEATURE_LIGHT_TREE: lighting.uses.lightTree,
+    FEATURE_AOVS: outputFeatures(config).aovs,
+    FEATURE_FILM_MOMENTS: outputFeatures(config).moments,
+    FEATURE_ADAPTIVE_SAMPLING: config.output.adaptive !== null,
+    ...materialFeatures(prepared.uses.materials),
+  };
+}
+
