@@ -10,14 +10,16 @@
  * Per case: samples/s and rays/s by ray type (wall clock of the timed frames), ms per frame, GPU ms
  * per frame from timestamp queries and the GPU's busy share of the wall time, dispatches, waves and
  * paths per wave, and the modelled bytes of path state per path per bounce (path-traffic.ts).
+ * Every case runs with both integrators, the wavefront (default) and the megakernel, on the same
+ * device, and the table gives the megakernel's throughput over the wavefront's per case.
  *
  * A CPU adapter (lavapipe) cannot render these workloads in bench time: there the cases keep their
  * resolution and depth but take 1/16 of the samples (at least 1) and 3 loop frames, and the table
  * says so; BENCH_GPU_SCALE=1 forces the full workload, BENCH_GPU_SCALE=<s> any other fraction.
  */
 import { acquireGpuDevice } from '../src/gpu/acquire-device.ts';
-import { createWavefrontPathTracingComputeRenderer } from '../src/pathtracer/index.ts';
-import type { WavefrontFrameStats, WavefrontPathTracingRenderer } from '../src/pathtracer/types.ts';
+import { createWavefrontPathTracingComputeRenderer, pathTracingIntegrators } from '../src/pathtracer/index.ts';
+import type { PathTracingIntegrator, WavefrontFrameStats, WavefrontPathTracingRenderer } from '../src/pathtracer/types.ts';
 import { pathRecordLayout } from '../src/gpu-layout/records.ts';
 import { createCornellBoxScene } from '../src/scene/cornell-box.ts';
 import type { WavefrontMeshInput } from '../src/scene/types.ts';
@@ -27,6 +29,7 @@ import { icosphere } from './pathtracer.ts';
 
 export interface GpuBenchRow {
   case: string;
+  integrator: PathTracingIntegrator;
   width: number;
   height: number;
   /** Samples per pixel of each timed frame. */
@@ -84,13 +87,13 @@ function sum(stats: WavefrontFrameStats[], pick: (s: WavefrontFrameStats) => num
   return stats.reduce((n, s) => n + pick(s), 0);
 }
 
-async function timeCase(device: GPUDevice, c: Case, scale: number): Promise<GpuBenchRow> {
+async function timeCase(device: GPUDevice, c: Case, scale: number, integrator: PathTracingIntegrator): Promise<GpuBenchRow> {
   const scene = createCornellBoxScene();
   const spp = c.loopFrames > 0 ? 1 : Math.max(1, Math.round(c.spp * scale));
   const frames = c.loopFrames > 0 ? Math.max(3, Math.round(c.loopFrames * scale)) : 1;
   const started = performance.now();
   const renderer: WavefrontPathTracingRenderer = await createWavefrontPathTracingComputeRenderer({
-    device, width: WIDTH, height: HEIGHT, maxDepth: c.maxDepth, samplesPerPixel: spp, meshes: c.meshes(), ...(scene.camera ? { camera: scene.camera } : {}),
+    device, width: WIDTH, height: HEIGHT, maxDepth: c.maxDepth, samplesPerPixel: spp, integrator, meshes: c.meshes(), ...(scene.camera ? { camera: scene.camera } : {}),
   });
   const createSeconds = (performance.now() - started) / 1000;
   try {
@@ -115,6 +118,7 @@ async function timeCase(device: GPUDevice, c: Case, scale: number): Promise<GpuB
     const last = stats.at(-1)!;
     return {
       case: c.name,
+      integrator,
       width: WIDTH,
       height: HEIGHT,
       spp,
@@ -147,7 +151,7 @@ export async function runGpuBenchmark(): Promise<GpuBenchmark> {
     const scale = process.env.BENCH_GPU_SCALE !== undefined ? Number(process.env.BENCH_GPU_SCALE) : software ? 1 / 16 : 1;
     if (!(scale > 0 && scale <= 1)) throw new Error(`BENCH_GPU_SCALE: expected a number in (0, 1], got ${process.env.BENCH_GPU_SCALE}`);
     const rows: GpuBenchRow[] = [];
-    for (const c of cases) rows.push(await timeCase(acquired.device, c, scale));
+    for (const c of cases) for (const integrator of pathTracingIntegrators) rows.push(await timeCase(acquired.device, c, scale, integrator));
     const fused = pathTrafficPerBounce();
     return {
       adapter: acquired.adapterDescription,
@@ -163,12 +167,19 @@ export async function runGpuBenchmark(): Promise<GpuBenchmark> {
 
 const fixed = (v: number, digits: number): number => Number(v.toFixed(digits));
 
+/** The wavefront row of the same case as rows[i] (the rows of a case are adjacent, wavefront first). */
+function wavefrontRow(rows: readonly GpuBenchRow[], i: number): GpuBenchRow {
+  for (let j = i; j >= 0; j--) if (rows[j]!.integrator === 'wavefront') return rows[j]!;
+  throw new Error(`no wavefront row before row ${i}`);
+}
+
 export function printGpuBenchmark(b: GpuBenchmark): void {
   const note = b.scale === 1 ? 'full workload' : `scaled: ${fixed(b.scale, 4)} of the samples and loop frames (BENCH_GPU_SCALE=1 for the full workload)`;
   console.log(`\nGPU: path tracer defaults (no tileSize), ${note}; adapter ${b.adapter}`);
   console.table(
-    b.rows.map((r) => ({
+    b.rows.map((r, i) => ({
       case: r.case,
+      integrator: r.integrator,
       size: `${r.width}x${r.height}`,
       spp: r.spp,
       depth: r.maxDepth,
@@ -183,6 +194,7 @@ export function printGpuBenchmark(b: GpuBenchmark): void {
       dispatches: r.dispatchesPerFrame,
       waves: r.wavesPerFrame,
       'paths/wave': r.pathsPerWave,
+      'vs wavefront': r.integrator === 'wavefront' ? '' : `${fixed(r.samplesPerSecond / wavefrontRow(b.rows, i).samplesPerSecond, 2)}x`,
     })),
   );
   console.log(

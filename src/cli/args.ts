@@ -83,6 +83,8 @@ export interface RenderCommand {
   fovYDegrees?: number;
   /** Where the BVH is built (`--bvh-build`): 'cpu-upload' (the renderer's default) or 'gpu'. */
   accelerationBuildMode?: 'cpu-upload' | 'gpu';
+  /** The path tracer's integrator (`--integrator`): 'wavefront' (the renderer's default) or 'megakernel'. */
+  integrator?: 'wavefront' | 'megakernel';
   /** Origins the scene's references may be fetched from (`--allow-origin`, repeatable); default none. */
   allowedOrigins?: string[];
 }
@@ -179,6 +181,8 @@ Sequences (glTF; --out holds #### for the frame number, {variant} and {camera} f
                            interrupted sequence resumes)
   --bvh-build <where>      cpu-upload (binned SAH on the CPU, the default) | gpu (LBVH built on the
                            GPU: faster to build on a real GPU, its tree ~25-30 % costlier (SAH))
+  --integrator <form>      wavefront (queued stages per bounce, the default) | megakernel (one
+                           kernel runs each path through all its bounces; same image)
   --allow-origin <origin>  let the scene's references fetch from this origin (e.g.
                            https://cdn.example.com; repeatable or comma separated). By default a
                            scene reads only files in its own folder and makes no network request
@@ -357,6 +361,12 @@ export function parseRenderArgs(argv: readonly string[]): RenderCommand | HelpCo
         const where = take();
         if (where !== 'cpu-upload' && where !== 'gpu') invalid(flag, `expected cpu-upload or gpu, got ${JSON.stringify(where)}`);
         command.accelerationBuildMode = where;
+        break;
+      }
+      case '--integrator': {
+        const form = take();
+        if (form !== 'wavefront' && form !== 'megakernel') invalid(flag, `expected wavefront or megakernel, got ${JSON.stringify(form)}`);
+        command.integrator = form;
         break;
       }
       case '--env-intensity':

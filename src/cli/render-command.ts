@@ -126,6 +126,7 @@ export function rendererSettings(command: RenderCommand): SequenceRendererOption
     denoise: command.denoise,
     energyCompensation: command.energyCompensation,
     ...(command.accelerationBuildMode ? { accelerationBuildMode: command.accelerationBuildMode } : {}),
+    ...(command.integrator ? { integrator: command.integrator } : {}),
     ...(command.noiseThreshold !== undefined ? { adaptiveThreshold: command.noiseThreshold, minimumSamplesPerPixel } : {}),
   };
 }

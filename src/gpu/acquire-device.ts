@@ -93,7 +93,8 @@ export async function acquireGpuDevice(options: AcquireGpuDeviceOptions = {}): P
   const requiredLimits: Record<string, number> = {
     maxStorageBufferBindingSize: adapter.limits.maxStorageBufferBindingSize,
     maxBufferSize: adapter.limits.maxBufferSize,
-    maxStorageBuffersPerShaderStage: Math.min(adapter.limits.maxStorageBuffersPerShaderStage, 10),
+    // 13 for the megakernel integrator (src/pathtracer/kernels/megakernel.wesl); 10 for the rest.
+    maxStorageBuffersPerShaderStage: Math.min(adapter.limits.maxStorageBuffersPerShaderStage, 16),
   };
   const device = await adapter.requestDevice({ requiredFeatures, requiredLimits });
   return {

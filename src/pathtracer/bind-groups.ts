@@ -1,6 +1,6 @@
 import { pathTracerBindings } from '../gpu-layout/bindings.ts';
 import { bounceUniformsLayout, waveUniformsLayout } from '../gpu-layout/records.ts';
-import type { KernelPipeline, ProgramLayout, WavefrontKernelName } from './pipelines.ts';
+import type { IntegratorKernelSet, KernelPipeline, ProgramLayout, WavefrontKernelName } from './pipelines.ts';
 
 /** The GPU resource behind every binding name of the path tracer. */
 export type PathTracerResourceMap = Record<string, GPUBuffer | GPUTextureView>;
@@ -34,9 +34,9 @@ export function createProgramBindGroups(device: GPUDevice, layout: ProgramLayout
   );
 }
 
-export function createKernelBindGroups(device: GPUDevice, kernels: Record<WavefrontKernelName, KernelPipeline>, resources: PathTracerResourceMap): Record<WavefrontKernelName, KernelBindGroups> {
+export function createKernelBindGroups(device: GPUDevice, kernels: IntegratorKernelSet<KernelPipeline>, resources: PathTracerResourceMap): IntegratorKernelSet<KernelBindGroups> {
   const bindingOf = (name: string): number => pathTracerBindings[name as keyof typeof pathTracerBindings].binding;
-  const out = {} as Record<WavefrontKernelName, KernelBindGroups>;
+  const out: IntegratorKernelSet<KernelBindGroups> = {};
   for (const [name, k] of Object.entries(kernels) as [WavefrontKernelName, KernelPipeline][]) {
     out[name] = {
       pipeline: k.pipeline,

@@ -4,7 +4,7 @@ import { maxRadiance } from '../scene/limits.ts';
 import type { WavefrontToneMapping } from '../scene/types.ts';
 import { normalizeWavefrontCamera, type WavefrontCamera } from './camera.ts';
 import { outputOptionNames, parseOutputOptions, type WavefrontOutputConfig } from './output-options.ts';
-import type { WavefrontPathTracingOptions } from './types.ts';
+import type { PathTracingIntegrator, WavefrontPathTracingOptions } from './types.ts';
 import type { AccelerationBuildMode } from './scene/prepare-scene.ts';
 
 export const maxWavefrontDepth = 32;
@@ -21,6 +21,8 @@ export interface WavefrontPathTracingComputeConfig {
   samplesPerPixel: number;
   /** Explicit bound on paths per wave (tileSize^2); null: sized to the device and the work. */
   tileSize: number | null;
+  /** How a wave's paths run: queued stages per bounce, or one kernel per path (megakernel). */
+  integrator: PathTracingIntegrator;
   /** Frames whose submission may run ahead of their statistics (renderFrame). */
   framesInFlight: number;
   seed: number;
@@ -42,10 +44,12 @@ export interface WavefrontPathTracingComputeConfig {
 }
 
 const toneMappings: readonly WavefrontToneMapping[] = ['neutral', 'aces', 'linear', 'agx'];
+/** Every integrator form, the default first. */
+export const pathTracingIntegrators: readonly PathTracingIntegrator[] = ['wavefront', 'megakernel'];
 
 /** Every option name the renderer understands; any other key is a typed error, never ignored. */
 export const wavefrontOptionNames: ReadonlySet<string> = new Set<keyof WavefrontPathTracingOptions>([
-  'width', 'height', 'maxDepth', 'samplesPerPixel', 'tileSize', 'framesInFlight', 'seed', 'camera', 'meshes', 'instances', 'materials', 'textures',
+  'width', 'height', 'maxDepth', 'samplesPerPixel', 'tileSize', 'integrator', 'framesInFlight', 'seed', 'camera', 'meshes', 'instances', 'materials', 'textures',
   'images', 'sceneObjects', 'lights', 'environment', 'toneMapping', 'exposure', 'aovs', 'shaderSpecialization', 'canvas', 'device', 'powerPreference',
   ...outputOptionNames,
   // Lighting (src/lighting/lighting-options.ts).
@@ -65,6 +69,8 @@ export function createWavefrontPathTracingComputeConfig(options: Partial<Wavefro
   const maxDepth = options.maxDepth === undefined ? 8 : requireInteger(options.maxDepth, 'maxDepth', { min: 1, max: maxWavefrontDepth });
   const samplesPerPixel = options.samplesPerPixel === undefined ? 1 : requireInteger(options.samplesPerPixel, 'samplesPerPixel', { min: 1, max: 65536 });
   const tileSize = options.tileSize === undefined ? null : requireInteger(options.tileSize, 'tileSize', { min: 8, max: 1024 });
+  const integrator = options.integrator ?? 'wavefront';
+  if (!pathTracingIntegrators.includes(integrator)) fail('INVALID_OPTION', 'integrator', `expected one of ${pathTracingIntegrators.map((i) => JSON.stringify(i)).join(', ')}, got ${JSON.stringify(integrator)}`);
   const framesInFlight = options.framesInFlight === undefined ? defaultFramesInFlight : requireInteger(options.framesInFlight, 'framesInFlight', { min: 1, max: maxFramesInFlight });
   const seed = options.seed === undefined ? 0 : requireInteger(options.seed, 'seed', { min: 0, max: 0xffffffff });
   const camera = normalizeWavefrontCamera(options.camera);
@@ -86,7 +92,7 @@ export function createWavefrontPathTracingComputeConfig(options: Partial<Wavefro
   if (accelerationBuildMode !== 'cpu-upload' && accelerationBuildMode !== 'gpu') fail('INVALID_OPTION', 'accelerationBuildMode', `expected "cpu-upload" or "gpu", got ${JSON.stringify(accelerationBuildMode)}`);
   const output = parseOutputOptions(options);
   return {
-    width, height, maxDepth, samplesPerPixel, tileSize, framesInFlight, seed, camera, environment, toneMapping, exposure, aovs: options.aovs ?? false, output, lighting,
+    width, height, maxDepth, samplesPerPixel, tileSize, integrator, framesInFlight, seed, camera, environment, toneMapping, exposure, aovs: options.aovs ?? false, output, lighting,
     energyCompensation: options.energyCompensation ?? true,
     accelerationBuildMode,
   };

@@ -1,7 +1,8 @@
 import { dynamicUniformStride, rendererWavefrontComputeWorkgroupSize } from '../gpu-layout/constants.ts';
 import type { KernelBindGroups } from './bind-groups.ts';
 import type { DispatchTally } from './dispatch-tally.ts';
-import type { WavefrontKernelName } from './pipelines.ts';
+import type { IntegratorKernelSet, WavefrontKernelName } from './pipelines.ts';
+import type { PathTracingIntegrator } from './types.ts';
 import type { Wave } from './waves.ts';
 
 /** Dynamic uniform offsets of the current wave and bounce. */
@@ -20,10 +21,14 @@ interface Offsets {
  * traversal loops over its queues with a grid of at most `gridLimit` workgroups; shading covers
  * the wave (one entry per invocation). `waves[i]` uses wave-uniform slot i; bounce d uses bounce
  * slot d.
+ *
+ * The megakernel integrator encodes two dispatches per wave instead: one invocation per path runs
+ * all its bounces (kernels/megakernel.wesl), then the same accumulation.
  */
 export class WavefrontEncoder {
-  private kernels: Record<WavefrontKernelName, KernelBindGroups>;
+  private kernels: IntegratorKernelSet<KernelBindGroups>;
   private readonly gridLimit: number;
+  private readonly integrator: PathTracingIntegrator;
   private readonly pixels: number;
   /** Receives a count of every dispatch (frame diagnostics); replaced per frame. */
   tally: DispatchTally | null = null;
@@ -32,19 +37,21 @@ export class WavefrontEncoder {
    * @param gridLimit most workgroups of a grid-stride dispatch (device-sized: enough to fill the
    *   GPU, few on a CPU adapter, whose every workgroup costs a task).
    */
-  constructor(kernels: Record<WavefrontKernelName, KernelBindGroups>, pixels: number, gridLimit: number) {
+  constructor(kernels: IntegratorKernelSet<KernelBindGroups>, pixels: number, gridLimit: number, integrator: PathTracingIntegrator = 'wavefront') {
     this.kernels = kernels;
+    this.integrator = integrator;
     this.pixels = pixels;
     this.gridLimit = gridLimit;
   }
 
   /** New bind groups (the queue buffers were reallocated). */
-  rebind(kernels: Record<WavefrontKernelName, KernelBindGroups>): void {
+  rebind(kernels: IntegratorKernelSet<KernelBindGroups>): void {
     this.kernels = kernels;
   }
 
   private dispatch(pass: GPUComputePassEncoder, name: WavefrontKernelName, offsets: Offsets, workgroups: number): void {
     const k = this.kernels[name];
+    if (!k) throw new Error(`kernel ${name} was not compiled for the ${this.integrator} integrator`);
     pass.setPipeline(k.pipeline);
     k.groups.forEach((group, g) => pass.setBindGroup(g, group, k.dynamic[g]!.map((d) => offsets[d as keyof Offsets])));
     pass.dispatchWorkgroups(workgroups);
@@ -65,14 +72,23 @@ export class WavefrontEncoder {
     waves.forEach((w, i) => {
       const paths = w.pathCount;
       const o: Offsets = { wave: i * dynamicUniformStride, bounce: 0 };
-      this.dispatch(pass, 'camera', o, WavefrontEncoder.cover(paths));
-      for (let d = 0; d <= maxDepth; d++) {
-        o.bounce = d * dynamicUniformStride;
-        // Each path queues at most one ray and one shadow ray per bounce.
-        this.dispatch(pass, 'trace', o, this.grid(d === 0 ? paths : 2 * paths));
-        this.dispatch(pass, 'shade', o, WavefrontEncoder.cover(paths));
+      if (this.integrator === 'megakernel') {
+        this.dispatch(pass, 'megakernel', o, WavefrontEncoder.cover(paths));
+      } else {
+        this.encodeBounces(pass, o, paths, maxDepth);
       }
       this.dispatch(pass, 'accumulate', o, WavefrontEncoder.cover(w.list ? paths : Math.min(paths, this.pixels)));
     });
+  }
+
+  /** The wavefront's camera rays and bounces of one wave. */
+  private encodeBounces(pass: GPUComputePassEncoder, o: Offsets, paths: number, maxDepth: number): void {
+    this.dispatch(pass, 'camera', o, WavefrontEncoder.cover(paths));
+    for (let d = 0; d <= maxDepth; d++) {
+      o.bounce = d * dynamicUniformStride;
+      // Each path queues at most one ray and one shadow ray per bounce.
+      this.dispatch(pass, 'trace', o, this.grid(d === 0 ? paths : 2 * paths));
+      this.dispatch(pass, 'shade', o, WavefrontEncoder.cover(paths));
+    }
   }
 }

@@ -1,6 +1,6 @@
 export { createWavefrontPathTracingComputeRenderer } from './renderer.ts';
 export { renderWavefrontPathTracingComputeFrame, type WavefrontOneShotResult } from './one-shot.ts';
-export { createWavefrontPathTracingComputeConfig, maxWavefrontDepth, wavefrontOptionNames, type WavefrontPathTracingComputeConfig } from './config.ts';
+export { createWavefrontPathTracingComputeConfig, maxWavefrontDepth, pathTracingIntegrators, wavefrontOptionNames, type WavefrontPathTracingComputeConfig } from './config.ts';
 export { createWavefrontPathTracingComputeShaderSource, type WavefrontShaderSources } from './shader-source.ts';
 export { createWavefrontMeshAcceleration, createWavefrontGpuMeshSource, packWavefrontSceneObjects, type WavefrontMeshAcceleration } from './scene/public-helpers.ts';
 export {
@@ -12,7 +12,7 @@ export {
   type WavefrontReferenceHit,
   type WavefrontReferenceTraceResult,
 } from './reference.ts';
-export { wavefrontKernels } from './pipelines.ts';
+export { integratorKernels, wavefrontKernels } from './pipelines.ts';
 export { defaultDenoiseSettings, outputOptionNames, type WavefrontOutputConfig } from './output-options.ts';
 export { featureFlagNames, resolveFeatureFlags, transportExperimentBehaviour, transportExperimentNames } from './feature-flags.ts';
 export type * from './types.ts';

@@ -5,18 +5,29 @@ import { oidnBindings } from '../post/denoise/oidn/bindings.ts';
 import { displayBindings } from '../shaders/display-bindings.ts';
 import { bvhBuildBindings } from '../accel/gpu-build/bindings.ts';
 import type { ShaderFeatures } from '../shaders/features.ts';
+import type { PathTracingIntegrator } from './types.ts';
 import { generatedPrograms } from '../shaders/programs.generated.ts';
 import { programSpecs, type ProgramName } from '../shaders/programs.ts';
 
-/** The compute kernels of one wavefront wave, with the program and entry point of each. */
+/** The compute kernels of a wave, with the program and entry point of each. */
 export const wavefrontKernels = {
   camera: { program: 'camera', entryPoint: 'generate_camera_rays' },
   trace: { program: 'trace', entryPoint: 'trace_rays' },
   shade: { program: 'shade', entryPoint: 'shade_hits' },
   accumulate: { program: 'accumulate', entryPoint: 'accumulate_samples' },
+  megakernel: { program: 'megakernel', entryPoint: 'trace_paths' },
 } as const satisfies Record<string, { program: ProgramName; entryPoint: string }>;
 
 export type WavefrontKernelName = keyof typeof wavefrontKernels;
+
+/** The kernels each integrator dispatches (only those are compiled). */
+export const integratorKernels = {
+  wavefront: ['camera', 'trace', 'shade', 'accumulate'],
+  megakernel: ['megakernel', 'accumulate'],
+} as const satisfies Record<PathTracingIntegrator, readonly WavefrontKernelName[]>;
+
+/** Pipelines or bind groups of the kernels an integrator dispatches. */
+export type IntegratorKernelSet<T> = Partial<Record<WavefrontKernelName, T>>;
 
 export interface ProgramLayout {
   /** Bind group layouts by group index (empty layouts fill unused lower groups). */
@@ -31,12 +42,32 @@ export interface KernelPipeline extends ProgramLayout {
 }
 
 export interface PathTracerPipelines {
-  kernels: Record<WavefrontKernelName, KernelPipeline>;
+  kernels: IntegratorKernelSet<KernelPipeline>;
   resolve: KernelPipeline;
 }
 
 const tables: Record<string, Record<string, BindingSpec>> = { pathTracer: pathTracerBindings, display: displayBindings, bvhBuild: bvhBuildBindings, oidn: oidnBindings };
 const programTable = Object.fromEntries(Object.entries(programSpecs).map(([name, spec]) => [name, spec.bindings])) as Record<ProgramName, string>;
+
+/** Storage buffers a program binds in one shader stage (compute). */
+function storageBufferCount(program: ProgramName): number {
+  const table = tables[programTable[program]]!;
+  return generatedPrograms[program].bindings.filter((name) => table[name]!.kind === 'storage').length;
+}
+
+/** Refuses an integrator whose kernels bind more storage buffers than the device offers per stage. */
+export function checkIntegratorLimits(integrator: PathTracingIntegrator, limits: GPUSupportedLimits): void {
+  for (const name of integratorKernels[integrator]) {
+    const needed = storageBufferCount(wavefrontKernels[name].program);
+    if (needed > limits.maxStorageBuffersPerShaderStage) {
+      throw new GpuRendererError(
+        'INVALID_OPTION',
+        `the ${integrator} integrator binds ${needed} storage buffers in one kernel; the device offers ${limits.maxStorageBuffersPerShaderStage} per shader stage (request a device with maxStorageBuffersPerShaderStage >= ${needed}, or use the default integrator)`,
+        { field: 'integrator' },
+      );
+    }
+  }
+}
 
 /** Explicit bind group layouts for exactly the bindings a program's linked WGSL declares. */
 export function programLayout(device: GPUDevice, program: ProgramName, visibility: number = ShaderStage.COMPUTE): ProgramLayout {
@@ -110,18 +141,19 @@ export async function computePipeline(device: GPUDevice, program: ProgramName, e
   return { ...layout, pipeline };
 }
 
-async function createPipelines(device: GPUDevice, features: ShaderFeatures): Promise<PathTracerPipelines> {
+async function createPipelines(device: GPUDevice, features: ShaderFeatures, integrator: PathTracingIntegrator): Promise<PathTracerPipelines> {
   device.pushErrorScope('validation');
   let pipelines: PathTracerPipelines | undefined;
   let failure: unknown;
   try {
     const entries = await Promise.all(
-      (Object.entries(wavefrontKernels) as [WavefrontKernelName, (typeof wavefrontKernels)[WavefrontKernelName]][]).map(
-        async ([name, k]) => [name, await computePipeline(device, k.program, k.entryPoint, features)] as const,
-      ),
+      integratorKernels[integrator].map(async (name) => {
+        const k = wavefrontKernels[name];
+        return [name, await computePipeline(device, k.program, k.entryPoint, features)] as const;
+      }),
     );
     const resolve = await computePipeline(device, 'resolve', 'resolve_pixels', features);
-    pipelines = { kernels: Object.fromEntries(entries) as Record<WavefrontKernelName, KernelPipeline>, resolve };
+    pipelines = { kernels: Object.fromEntries(entries) as IntegratorKernelSet<KernelPipeline>, resolve };
   } catch (error) {
     failure = error;
   }
@@ -132,14 +164,14 @@ async function createPipelines(device: GPUDevice, features: ShaderFeatures): Pro
   return pipelines!;
 }
 
-/** The path tracer's pipelines for a feature set, created once per device and feature set. */
-export function pathTracerPipelines(device: GPUDevice, features: ShaderFeatures): Promise<PathTracerPipelines> {
+/** The path tracer's pipelines for a feature set and integrator, created once per device and both. */
+export function pathTracerPipelines(device: GPUDevice, features: ShaderFeatures, integrator: PathTracingIntegrator = 'wavefront'): Promise<PathTracerPipelines> {
   let perDevice = pipelineCache.get(device);
   if (!perDevice) pipelineCache.set(device, (perDevice = new Map()));
-  const key = featureKey(features);
+  const key = `${integrator}:${featureKey(features)}`;
   let p = perDevice.get(key);
   if (!p) {
-    p = createPipelines(device, features);
+    p = createPipelines(device, features, integrator);
     p.catch(() => perDevice.delete(key));
     perDevice.set(key, p);
   }

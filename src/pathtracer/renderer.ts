@@ -27,7 +27,7 @@ import { parseRenderFrameOptions, type ParsedFrameOptions } from './output-optio
 import type { WavefrontOutputState, WavefrontRenderProgress } from './output-types.ts';
 import { WavefrontEncoder } from './frame-encoder.ts';
 import { GpuBufferSet, readGpuBuffer } from './gpu-buffers.ts';
-import { pathTracerPipelines, type PathTracerPipelines } from './pipelines.ts';
+import { checkIntegratorLimits, pathTracerPipelines, type PathTracerPipelines } from './pipelines.ts';
 import { FilmDisplay } from './presentation.ts';
 import { prepareGeometry, prepareMaterials, sceneExtent, type PreparedScene } from './scene/prepare-scene.ts';
 import { SceneAcceleration } from './scene/scene-acceleration.ts';
@@ -84,6 +84,7 @@ export async function createWavefrontPathTracingComputeRenderer(options: Wavefro
   });
   try {
     resolveWavefrontDenoiser(config.output, acquired.device);
+    checkIntegratorLimits(config.integrator, acquired.device.limits);
     const limits = acquired.device.limits;
     // Buffers are checked at the largest wave this renderer may grow to; they start at the work of
     // one call of samplesPerPixel and grow when a frame asks for more (growQueues).
@@ -99,7 +100,7 @@ export async function createWavefrontPathTracingComputeRenderer(options: Wavefro
     const initialPlan = planBuffers({ ...estimate, materialCells: prepared.materials.byteLength / 16, lightCount: prepared.lightCount, lightHeapCells: lighting.heap.byteLength / 16, primitiveCount: prepared.primitiveCount, wavePaths });
     const features = specialization === 'off' ? allShaderFeatures : sceneFeatures(prepared, lighting, config);
     const [pipelines, adaptivePipelines, denoisePipelines] = await Promise.all([
-      pathTracerPipelines(acquired.device, features),
+      pathTracerPipelines(acquired.device, features, config.integrator),
       config.output.adaptive ? createAdaptivePipelines(acquired.device, features) : null,
       config.output.denoise ? prepareWavefrontDenoiser(acquired.device, config.output.denoise, config.output.denoiseWeights, features) : null,
     ]);
@@ -259,7 +260,7 @@ class WavefrontRenderer extends EventTarget implements WavefrontPathTracingRende
       displayPixels: resources.displayPixels,
     };
     this.resourceMap = map;
-    this.encoderOfWaves = new WavefrontEncoder(createKernelBindGroups(device, pipelines.kernels, map), config.width * config.height, gridWorkgroupLimit(acquired.softwareAdapter, device.limits));
+    this.encoderOfWaves = new WavefrontEncoder(createKernelBindGroups(device, pipelines.kernels, map), config.width * config.height, gridWorkgroupLimit(acquired.softwareAdapter, device.limits), config.integrator);
     const out = config.output;
     this.display = new FilmDisplay(device, pipelines.resolve, map, out.denoise ? resources.denoised : undefined);
     if (out.denoise?.present === 'denoised') this.display.source = 'denoised';
@@ -790,6 +791,7 @@ class WavefrontRenderer extends EventTarget implements WavefrontPathTracingRende
       maxDepth: this.config.maxDepth,
       samplesPerPixel: this.config.samplesPerPixel,
       tileSize: this.config.tileSize,
+      integrator: this.config.integrator,
       wavePaths: this.capacity,
       maxWavePaths: this.maxWavePaths,
       framesInFlight: this.config.framesInFlight,

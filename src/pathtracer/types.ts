@@ -37,6 +37,9 @@ export interface WavefrontSceneUpdate {
  * the lighting options (environment map or sky, portals, light sampler) and the output options
  * (adaptive sampling, denoising, presentation, feature flags; output-options.ts).
  */
+/** The path tracer's integrator form (WavefrontPathTracingOptions.integrator). */
+export type PathTracingIntegrator = 'wavefront' | 'megakernel';
+
 export interface WavefrontPathTracingOptions extends Omit<WavefrontSceneDescription, 'lights'>, WavefrontLightingOptions, WavefrontOutputOptions {
   /** KHR_lights_punctual point, spot and directional lights, and rectangle, disk and sphere area lights. */
   lights?: WavefrontSceneLightInput[];
@@ -52,6 +55,13 @@ export interface WavefrontPathTracingOptions extends Omit<WavefrontSceneDescript
    * 2^21 paths (wave-capacity.ts).
    */
   tileSize?: number;
+  /**
+   * How a wave's paths run (default 'wavefront'): 'wavefront' runs each bounce of all paths as a
+   * traversal and a shading dispatch over queues; 'megakernel' runs each path through all its
+   * bounces in one invocation of one kernel. Both compute the same samples; which is faster depends
+   * on the GPU and the scene (`npm run bench` measures both).
+   */
+  integrator?: PathTracingIntegrator;
   /**
    * Frames renderFrame may have submitted before their statistics come back (1..4, default 2): a
    * call that does not await the previous one's result submits at once unless this many frames are
@@ -192,6 +202,8 @@ export interface WavefrontRendererSnapshot extends WavefrontOutputState {
   samplesPerPixel: number;
   /** The explicit wave bound (tileSize^2 paths), or null when waves are sized to the device. */
   tileSize: number | null;
+  /** The integrator form the renderer was created with. */
+  integrator: PathTracingIntegrator;
   /** Paths per wave the queues now hold (they grow up to the bound as frames need). */
   wavePaths: number;
   /** Most paths a wave may hold on this device (or tileSize^2). */

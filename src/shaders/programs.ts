@@ -18,6 +18,8 @@ export const programSpecs = {
   trace: { module: 'package::pathtracer::kernels::trace', bindings: 'pathTracer' },
   shade: { module: 'package::pathtracer::kernels::shade', bindings: 'pathTracer' },
   accumulate: { module: 'package::pathtracer::kernels::accumulate', bindings: 'pathTracer' },
+  // The megakernel integrator (integrator: 'megakernel'): the stage functions above in one loop.
+  megakernel: { module: 'package::pathtracer::kernels::megakernel', bindings: 'pathTracer', conditions: { megakernel: true } },
   adaptiveSampling: { module: 'package::pathtracer::adaptive_sampling', bindings: 'pathTracer' },
   denoiseInput: { module: 'package::pathtracer::denoise_input', bindings: 'pathTracer' },
   denoise: { module: 'package::post::denoise::atrous', bindings: 'pathTracer' },

@@ -1,6 +1,7 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { parseCliArgs, parseRenderArgs, renderDefaults, usage, type RenderCommand } from '../../src/cli/args.ts';
+import { rendererSettings } from '../../src/cli/render-command.ts';
 import { GpuRendererError } from '../../src/errors/gpu-renderer-error.ts';
 
 function rejects(argv: string[], field: string, message?: RegExp): void {
@@ -55,6 +56,14 @@ test('--bvh-build chooses where the BVH is built', () => {
   assert.equal(render(['--bvh-build=cpu-upload']).accelerationBuildMode, 'cpu-upload');
   assert.equal(render([]).accelerationBuildMode, undefined);
   rejects(['render', '--bvh-build', 'fpga'], '--bvh-build', /cpu-upload or gpu/);
+});
+
+test('--integrator chooses the path tracer form and reaches the renderer settings', () => {
+  assert.equal(render(['--integrator', 'megakernel']).integrator, 'megakernel');
+  assert.equal(rendererSettings(render(['--integrator=megakernel'])).integrator, 'megakernel');
+  assert.equal(render([]).integrator, undefined);
+  assert.equal('integrator' in rendererSettings(render([])), false);
+  rejects(['render', '--integrator', 'persistent'], '--integrator', /wavefront or megakernel/);
 });
 
 test('samples per frame never exceeds the target unless given', () => {

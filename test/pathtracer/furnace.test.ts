@@ -43,7 +43,7 @@ function meanOver(data: Float32Array, pixels: number[]): number[] {
 }
 
 async function furnace(
-  scene: { meshes?: unknown[]; sceneObjects?: unknown[]; energyCompensation?: boolean },
+  scene: { meshes?: unknown[]; sceneObjects?: unknown[]; energyCompensation?: boolean; integrator?: 'megakernel' },
   radii: [number, number],
   expected: (c: number, inside: number[]) => number,
   tolerance: number,
@@ -86,6 +86,16 @@ test('white furnace: albedo-1 Lambertian triangle mesh (flat icosphere) renders 
   // A radius below the tessellation's inscribed sphere bounds "inside" pixels, the vertex radius "outside" ones.
   await furnace(
     { meshes: [{ positions: sphere.positions, indices: sphere.indices, material: { baseColorFactor: [1, 1, 1, 1], metallicFactor: 0, roughnessFactor: 1, ior: 1 } }] },
+    [0.97, 1],
+    (c) => L[c]!,
+    0.01,
+  );
+});
+
+test('white furnace, megakernel integrator: albedo-1 Lambertian icosphere renders exactly L', async () => {
+  const sphere = icosphere(1, [0, 0, 0], 3);
+  await furnace(
+    { integrator: 'megakernel', meshes: [{ positions: sphere.positions, indices: sphere.indices, material: { baseColorFactor: [1, 1, 1, 1], metallicFactor: 0, roughnessFactor: 1, ior: 1 } }] },
     [0.97, 1],
     (c) => L[c]!,
     0.01,
