@@ -11,6 +11,7 @@ import { createWavefrontPathTracingComputeRenderer } from '../../src/pathtracer/
 import type { WavefrontFrameStats, WavefrontPathTracingOptions } from '../../src/pathtracer/types.ts';
 import { createCornellBoxScene } from '../../src/scene/cornell-box.ts';
 import { GpuRendererError } from '../../src/errors/gpu-renderer-error.ts';
+import { getGpu } from '../../src/gpu/acquire-device.ts';
 import { testDevice } from '../helpers/gpu.ts';
 import { quad, roundTrip } from './gltf-scenes.ts';
 
@@ -134,4 +135,18 @@ test('integrator: an unknown form is a typed error naming the field', async () =
     createWavefrontPathTracingComputeRenderer({ device, width: 8, height: 8, integrator: 'persistent' as 'megakernel' }),
     (e: unknown) => e instanceof GpuRendererError && e.code === 'INVALID_OPTION' && e.field === 'integrator' && /wavefront/.test(e.message),
   );
+});
+
+test('integrator: a device with fewer storage buffers per stage than the megakernel binds is a typed error naming the field', async () => {
+  const adapter = await (await getGpu())!.requestAdapter();
+  // WebGPU's default limits: 8 storage buffers per shader stage.
+  const device = await adapter!.requestDevice();
+  try {
+    await assert.rejects(
+      createWavefrontPathTracingComputeRenderer({ device, width: 8, height: 8, integrator: 'megakernel' }),
+      (e: unknown) => e instanceof GpuRendererError && e.code === 'INVALID_OPTION' && e.field === 'integrator' && /offers 8 per shader stage/.test(e.message),
+    );
+  } finally {
+    device.destroy();
+  }
 });
