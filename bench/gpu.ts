@@ -194,6 +194,8 @@ export function printGpuBenchmark(b: GpuBenchmark): void {
       dispatches: r.dispatchesPerFrame,
       waves: r.wavesPerFrame,
       'paths/wave': r.pathsPerWave,
+      // Renderer creation: BVH build, upload, and the kernels' compilation the first time a feature set and integrator appear.
+      'create s': fixed(r.createSeconds, 1),
       'vs wavefront': r.integrator === 'wavefront' ? '' : `${fixed(r.samplesPerSecond / wavefrontRow(b.rows, i).samplesPerSecond, 2)}x`,
     })),
   );
