@@ -1,5 +1,6 @@
 import { GpuRendererError } from '../errors/gpu-renderer-error.ts';
 import { describe } from '../errors/validate.ts';
+import { isNodeRuntime, nodeModule } from '../io/platform.ts';
 
 export interface AcquireGpuDeviceOptions {
   /** Share an existing device instead of creating one. */
@@ -28,17 +29,14 @@ let nodeGpu: Promise<GPU | undefined> | undefined;
 export function getGpu(): Promise<GPU | undefined> {
   const nav = (globalThis as { navigator?: { gpu?: GPU } }).navigator;
   if (nav?.gpu) return Promise.resolve(nav.gpu);
-  const isNode = typeof process !== 'undefined' && typeof process.versions?.node === 'string';
-  if (!isNode) return Promise.resolve(undefined);
+  if (!isNodeRuntime()) return Promise.resolve(undefined);
   nodeGpu ??= loadDawn();
   return nodeGpu;
 }
 
 async function loadDawn(): Promise<GPU | undefined> {
-  // A variable specifier keeps bundlers from trying to resolve the Node-only package.
-  const specifier = 'webgpu';
   try {
-    const dawn = (await import(specifier)) as { create: (flags: string[]) => GPU; globals: Record<string, unknown> };
+    const dawn = await nodeModule<{ create: (flags: string[]) => GPU; globals: Record<string, unknown> }>('webgpu');
     for (const [key, value] of Object.entries(dawn.globals)) {
       if (!(key in globalThis)) (globalThis as Record<string, unknown>)[key] = value;
     }

@@ -23,9 +23,8 @@ import type * as NodeUrl from 'node:url';
 import { GpuRendererError, type GpuRendererErrorCode } from '../errors/gpu-renderer-error.ts';
 import { describe } from '../errors/validate.ts';
 import { decodeDataUri } from './data-uri.ts';
-import { fetchBytes, isNodeRuntime, nodeModule, readLocalFile } from './resource-read.ts';
-
-export { isNodeRuntime };
+import { isNodeRuntime, nodeModule } from './platform.ts';
+import { fetchBytes, readLocalFile } from './resource-read.ts';
 
 /** The `resourcePolicy` option of every loader. */
 export interface ResourcePolicy {

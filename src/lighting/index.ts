@@ -12,8 +12,8 @@ export {
   type EnvironmentSampler,
   type EnvironmentSample,
 } from './environment-sampling.ts';
-export { decodeRadianceHdr, isRadianceHdr, type DecodedHdrImage } from './radiance-hdr.ts';
-export { decodeOpenExr, isOpenExr, type DecodeOpenExrOptions, type ExrLoaderLike, type ExrLoaderConstructor } from './openexr.ts';
+// The HDR and OpenEXR readers live in src/io/images; re-exported here, where they were first published.
+export { decodeRadianceHdr, isRadianceHdr, type DecodedHdrImage, decodeOpenExr, isOpenExr, type DecodeOpenExrOptions, type ExrLoaderLike, type ExrLoaderConstructor } from '../io/images/index.ts';
 export { loadEnvironmentMap, type EnvironmentMapSource, type LoadEnvironmentMapOptions, type NegativeTexelReport } from './load-environment-map.ts';
 export type { WavefrontAreaLightInput, WavefrontRectangleLightInput, WavefrontDiskLightInput, WavefrontSphereLightInput } from './light-types.ts';
 export {

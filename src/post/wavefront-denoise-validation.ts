@@ -15,7 +15,7 @@
  * values count as invalid and are read as 0 for the other measurements.
  */
 import { GpuRendererError } from '../errors/gpu-renderer-error.ts';
-import { requireLinearRgbaImage, type LinearRgbaImage } from './files/linear-image.ts';
+import { requireLinearRgbaImage, type LinearRgbaImage } from '../io/images/linear-image.ts';
 import { gaussianBlur } from './metrics/gaussian-blur.ts';
 
 export interface DenoiseValidationRegion {

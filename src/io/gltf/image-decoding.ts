@@ -8,7 +8,7 @@
  */
 import type { WavefrontImageInput } from '../../scene/types.ts';
 import { failGltf } from './errors.ts';
-import { isNodeRuntime } from './resources.ts';
+import { isNodeRuntime } from '../platform.ts';
 import { checkImageHeader } from '../image-headers.ts';
 import { defaultResourcePolicy, type ResolvedResourcePolicy } from '../resource-policy.ts';
 

@@ -4,9 +4,7 @@
  * data URIs carry their bytes inline) are read under the caller's policy, and faults are
  * INVALID_GLTF errors at the JSON pointer of the buffer or image that names them.
  */
-import { isNodeRuntime, locateSource, readReference, type ResolvedResourcePolicy } from '../resource-policy.ts';
-
-export { isNodeRuntime };
+import { locateSource, readReference, type ResolvedResourcePolicy } from '../resource-policy.ts';
 
 /** A string source as a URL: an absolute URL, or (Node) a file path. */
 export function sourceStringToUrl(source: string): Promise<URL> {

@@ -15,7 +15,7 @@
  * plain mean of the samples it received (no reweighting).
  */
 import { GpuRendererError } from '../../errors/gpu-renderer-error.ts';
-import { requireLinearRgbaImage, type LinearRgbaImage } from '../files/linear-image.ts';
+import { requireLinearRgbaImage, type LinearRgbaImage } from '../../io/images/linear-image.ts';
 
 export interface AdaptiveConvergenceOptions {
   /** Noise threshold (Cycles' "Noise Threshold"), > 0. */

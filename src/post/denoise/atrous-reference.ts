@@ -7,7 +7,7 @@
  * radiance is scaled per channel to the raw one's total (energy over the whole image).
  */
 import { GpuRendererError } from '../../errors/gpu-renderer-error.ts';
-import { requireLinearRgbaImage, type LinearRgbaImage } from '../files/linear-image.ts';
+import { requireLinearRgbaImage, type LinearRgbaImage } from '../../io/images/linear-image.ts';
 
 export interface AtrousDenoiseSettings {
   iterations: number;

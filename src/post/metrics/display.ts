@@ -3,7 +3,7 @@
  * tone mapping, sRGB encoding, 8-bit quantisation: encodeRadianceToRgba8) before comparison.
  */
 import { encodeRadianceToRgba8, type EncodeRadianceOptions } from '../tone-mapping.ts';
-import type { LinearRgbaImage } from '../files/linear-image.ts';
+import type { LinearRgbaImage } from '../../io/images/linear-image.ts';
 import { requireComparable } from './image-error.ts';
 import { ssimRgba8 } from './ssim.ts';
 

@@ -3,7 +3,7 @@
  * linear RGBA float images (alpha ignored). All are means over pixels and the three channels.
  */
 import { GpuRendererError } from '../../errors/gpu-renderer-error.ts';
-import { requireLinearRgbaImage, type LinearRgbaImage } from '../files/linear-image.ts';
+import { requireLinearRgbaImage, type LinearRgbaImage } from '../../io/images/linear-image.ts';
 
 /** Validates that both images are RGBA float of the same size with finite RGB; returns the pixel count. */
 export function requireComparable(test: LinearRgbaImage, reference: LinearRgbaImage): number {

@@ -7,7 +7,7 @@
  * automatic downsampling is applied (the later ssim.m's scale heuristic is not part of the paper).
  */
 import { GpuRendererError } from '../../errors/gpu-renderer-error.ts';
-import type { Rgba8Image } from '../png.ts';
+import type { Rgba8Image } from '../../io/images/png.ts';
 
 export interface GrayImage {
   width: number;

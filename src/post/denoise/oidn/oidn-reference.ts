@@ -5,7 +5,7 @@
  * tested against, and usable offline on small images (it takes about a second per 64x64 pixels).
  */
 import { GpuRendererError } from '../../../errors/gpu-renderer-error.ts';
-import { requireLinearRgbaImage, type LinearRgbaImage } from '../../files/linear-image.ts';
+import { requireLinearRgbaImage, type LinearRgbaImage } from '../../../io/images/linear-image.ts';
 import { autoexposure, puForward, puInverse, puNormScale, sanitize } from './transfer.ts';
 import { unetAlignment, type UNetModel } from './unet.ts';
 

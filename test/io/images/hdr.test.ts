@@ -1,10 +1,11 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { decodeHdr } from '../../../src/post/files/hdr-decode.ts';
-import { encodeHdr, encodeRgbe } from '../../../src/post/files/hdr-encode.ts';
+import { decodeHdr, decodeRadianceHdr } from '../../../src/io/images/radiance-hdr.ts';
+import { encodeHdr, encodeRgbe } from '../../../src/io/images/hdr-encode.ts';
 import { GpuRendererError } from '../../../src/errors/gpu-renderer-error.ts';
 import { rng } from '../../helpers/random.ts';
 import { readHdrWithThree } from './independent-readers.ts';
+import { assertDecodedMatches, encodeHdr as encodeReferenceHdr, sourceImage } from './environment-encoders.ts';
 
 function radiance(width: number, height: number, seed: number): Float32Array {
   const rand = rng(seed);
@@ -127,7 +128,7 @@ test('decodeHdr reads hand-made flat and old-style RLE scanlines and divides out
   const isBytes = (e: unknown) => e instanceof GpuRendererError && e.field === 'bytes';
   assert.throws(() => decodeHdr(bad('P6\n')), isBytes);
   assert.throws(() => decodeHdr(bad('#?RADIANCE\nFORMAT=32-bit_rle_xyze\n\n-Y 1 +X 1\n\0\0\0\0')), isBytes);
-  assert.throws(() => decodeHdr(bad('#?RADIANCE\n\n+Y 1 +X 1\n\0\0\0\0')), isBytes);
+  assert.throws(() => decodeHdr(bad('#?RADIANCE\n\n+X 1 -Y 1\n\0\0\0\0')), isBytes); // column-major
   assert.throws(() => decodeHdr(bad('#?RADIANCE\n\n-Y 2 +X 1\n\0\0\0\0')), isBytes);
 });
 
@@ -135,4 +136,58 @@ test('encodeHdr rejects bad images and multi-line comments with typed errors', (
   const isField = (field: string) => (e: unknown) => e instanceof GpuRendererError && e.code === 'INVALID_OPTION' && e.field === field;
   assert.throws(() => encodeHdr({ width: 2, height: 1, data: new Float32Array(7) }), isField('image.data'));
   assert.throws(() => encodeHdr({ width: 1, height: 1, data: new Float32Array(4) }, { comment: 'a\nb' }), isField('comment'));
+});
+
+// ---- decodeRadianceHdr on files written by the test-side encoder ------------------------------------------------------------------------------
+
+test('Radiance HDR: RLE and flat scanlines decode within RGBE precision (2^-8 of the largest channel)', () => {
+  for (const rle of [true, false]) {
+    const w = 37;
+    const h = 5;
+    const rgb = sourceImage(w, h, rle ? 1 : 2);
+    const image = decodeRadianceHdr(encodeReferenceHdr(w, h, rgb, { rle }));
+    assert.equal(image.width, w);
+    assert.equal(image.height, h);
+    assertDecodedMatches(image.data, w, h, rgb, 2 ** -8);
+  }
+});
+
+test('Radiance HDR: EXPOSURE is divided out; +Y and -X orientations are flipped to top-left first', () => {
+  const w = 9;
+  const h = 4;
+  const rgb = sourceImage(w, h, 3);
+  assertDecodedMatches(decodeRadianceHdr(encodeReferenceHdr(w, h, rgb, { rle: true, exposure: 4 })).data, w, h, rgb, 2 ** -8);
+  // Written bottom row first (+Y) and right to left (-X): the file's first pixel is our bottom-right.
+  const flipped = new Float64Array(rgb.length);
+  for (let y = 0; y < h; y++) for (let x = 0; x < w; x++) flipped.set(rgb.subarray(3 * (y * w + x), 3 * (y * w + x) + 3), 3 * ((h - 1 - y) * w + (w - 1 - x)));
+  const image = decodeRadianceHdr(encodeReferenceHdr(w, h, flipped, { rle: true, orientation: `+Y ${h} -X ${w}` }));
+  assertDecodedMatches(image.data, w, h, rgb, 2 ** -8);
+});
+
+test('Radiance HDR: old-style run-length repeats', () => {
+  const header = new TextEncoder().encode('#?RGBE\n\n-Y 1 +X 5\n');
+  // Pixel (128, 64, 32, e=129), then repeat 3 times, then one black pixel.
+  const body = [128, 64, 32, 129, 1, 1, 1, 3, 0, 0, 0, 0];
+  const image = decodeRadianceHdr(new Uint8Array([...header, ...body]));
+  for (let x = 0; x < 4; x++) assert.deepEqual([...image.data.subarray(4 * x, 4 * x + 3)], [128.5 / 128, 64.5 / 128, 32.5 / 128]);
+  assert.deepEqual([...image.data.subarray(16, 20)], [0, 0, 0, 1]);
+});
+
+function expectInvalid(fn: () => unknown): void {
+  assert.throws(fn, (e: unknown) => e instanceof GpuRendererError && e.code === 'INVALID_ENVIRONMENT' && e.field === 'source');
+}
+
+test('Radiance HDR: truncated and malformed files raise INVALID_ENVIRONMENT', () => {
+  const w = 16;
+  const h = 3;
+  const good = encodeReferenceHdr(w, h, sourceImage(w, h, 4), { rle: true });
+  for (const cut of [5, 30, good.length - 1, good.length - 40]) expectInvalid(() => decodeRadianceHdr(good.subarray(0, cut)));
+  expectInvalid(() => decodeRadianceHdr(new TextEncoder().encode('#?RADIANCE\nFORMAT=32-bit_rle_xyze\n\n-Y 1 +X 1\n\0\0\0\0')));
+  expectInvalid(() => decodeRadianceHdr(new TextEncoder().encode('#?RADIANCE\n\n+X 1 -Y 1\n\0\0\0\0')));
+  expectInvalid(() => decodeRadianceHdr(new TextEncoder().encode('P6\n1 1\n255\n')));
+  // An RLE scanline that claims another width.
+  const bad = good.slice();
+  const start = bad.indexOf(2, new TextEncoder().encode('#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 3 +X 16\n').length);
+  bad[start + 3] = 15;
+  expectInvalid(() => decodeRadianceHdr(bad));
 });

@@ -3,7 +3,7 @@ import assert from 'node:assert/strict';
 import { mkdtemp, rm, writeFile } from 'node:fs/promises';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
-import { encodeExr, type ExrCompression, type ExrPixelType } from '../../../src/post/files/exr-encode.ts';
+import { encodeExr, type ExrCompression, type ExrPixelType } from '../../../src/io/images/exr-encode.ts';
 import { GpuRendererError } from '../../../src/errors/gpu-renderer-error.ts';
 import { rng } from '../../helpers/random.ts';
 import { openExrUnavailable, readExrWithOpenExr, readExrWithThree } from './independent-readers.ts';

@@ -5,8 +5,9 @@
  * exposure options do not apply to them).
  */
 import { GpuRendererError } from '../../errors/gpu-renderer-error.ts';
-import { encodePng } from '../png.ts';
-import { encodeRadianceToRgba8, type EncodeRadianceOptions } from '../tone-mapping.ts';
+import { writeFileBytes } from '../platform.ts';
+import { encodePng } from './png.ts';
+import { encodeRadianceToRgba8, type EncodeRadianceOptions } from '../../post/tone-mapping.ts';
 import { encodeExr, type EncodeExrOptions } from './exr-encode.ts';
 import { encodeHdr, type EncodeHdrOptions } from './hdr-encode.ts';
 import { requireLinearRgbaImage, type LinearRgbaImage } from './linear-image.ts';
@@ -55,16 +56,11 @@ export function encodeImageFile(image: LinearRgbaImage, format: ImageFileFormat,
 
 /**
  * Encodes `image` and writes it to `path` (Node.js only), choosing the format from the extension
- * unless `options.format` is given. `node:fs` is imported lazily through a variable specifier so
- * browser bundles never try to resolve it. Resolves to the format and the number of bytes written.
+ * unless `options.format` is given (browser bundles never resolve `node:fs`). Resolves to the format and the number of bytes written.
  */
 export async function writeImageFile(path: string, image: LinearRgbaImage, options: ImageFileOptions = {}): Promise<{ format: ImageFileFormat; bytes: number }> {
   const format = options.format ?? imageFileFormatFromPath(path);
   const bytes = encodeImageFile(image, format, options);
-  const isNode = typeof process !== 'undefined' && typeof process.versions?.node === 'string';
-  if (!isNode) throw new GpuRendererError('INVALID_STATE', 'writeImageFile needs Node.js (node:fs); use encodeImageFile, encodeExr or encodeHdr in browsers');
-  const specifier = 'node:fs/promises';
-  const fs = (await import(specifier)) as { writeFile: (path: string, data: Uint8Array) => Promise<void> };
-  await fs.writeFile(path, bytes);
+  await writeFileBytes(path, bytes, 'writeImageFile', 'use encodeImageFile, encodeExr or encodeHdr in browsers');
   return { format, bytes: bytes.length };
 }

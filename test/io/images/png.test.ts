@@ -4,9 +4,9 @@ import { mkdtemp, readFile, rm } from 'node:fs/promises';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { decode } from 'fast-png';
-import { encodePng } from '../../src/post/png.ts';
-import { writePng } from '../../src/post/png-node.ts';
-import { GpuRendererError } from '../../src/errors/gpu-renderer-error.ts';
+import { encodePng } from '../../../src/io/images/png.ts';
+import { writePng } from '../../../src/io/images/png-node.ts';
+import { GpuRendererError } from '../../../src/errors/gpu-renderer-error.ts';
 
 function image(width: number, height: number): { width: number; height: number; data: Uint8ClampedArray } {
   const data = new Uint8ClampedArray(width * height * 4);

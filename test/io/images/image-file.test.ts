@@ -4,7 +4,7 @@ import { mkdtemp, readFile, rm } from 'node:fs/promises';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { decode } from 'fast-png';
-import { encodeImageFile, imageFileFormatFromPath, writeImageFile } from '../../../src/post/files/image-file.ts';
+import { encodeImageFile, imageFileFormatFromPath, writeImageFile } from '../../../src/io/images/image-file.ts';
 import { encodeRadianceToRgba8 } from '../../../src/post/tone-mapping.ts';
 import { GpuRendererError } from '../../../src/errors/gpu-renderer-error.ts';
 import { readExrWithThree, readHdrWithThree } from './independent-readers.ts';

@@ -1,5 +1,5 @@
 import { encode } from 'fast-png';
-import { GpuRendererError } from '../errors/gpu-renderer-error.ts';
+import { GpuRendererError } from '../../errors/gpu-renderer-error.ts';
 
 export interface Rgba8Image {
   width: number;

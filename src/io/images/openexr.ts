@@ -1,7 +1,6 @@
-import { GpuRendererError } from '../errors/gpu-renderer-error.ts';
-import type { DecodeBudget } from '../io/resource-policy.ts';
-import { MAX_ENVIRONMENT_MAP_DIMENSION } from './environment-map.ts';
-import { halfToFloat } from './half-float.ts';
+import { GpuRendererError } from '../../errors/gpu-renderer-error.ts';
+import { defaultResourcePolicy, type DecodeBudget } from '../resource-policy.ts';
+import { halfBitsToFloat32 } from './half-float.ts';
 import { validateOpenExr } from './openexr-header.ts';
 import { parseExrInWorker } from './openexr-worker.ts';
 import type { DecodedHdrImage } from './radiance-hdr.ts';
@@ -53,6 +52,8 @@ async function importExrLoader(field: string): Promise<ExrLoaderConstructor> {
 export interface DecodeOpenExrOptions {
   /** A load's resource budget, charged with the decoded texels before they are allocated. */
   budget?: DecodeBudget;
+  /** Largest width or height, default the resource policy's `maxImageDimension` (16384). */
+  maxImageDimension?: number;
   /** Deadline of the decoder thread (Node), ms; default 60000. */
   decodeTimeoutMs?: number;
   /** Terminates the decoder thread and rejects with the signal's reason. */
@@ -69,9 +70,9 @@ export interface DecodeOpenExrOptions {
  */
 export async function decodeOpenExr(bytes: Uint8Array, field = 'source', loader?: ExrLoaderConstructor, options: DecodeOpenExrOptions = {}): Promise<DecodedHdrImage> {
   if (!isOpenExr(bytes)) throw new GpuRendererError('INVALID_ENVIRONMENT', 'OpenEXR: missing the magic number', { field });
-  const header = validateOpenExr(bytes, field, MAX_ENVIRONMENT_MAP_DIMENSION);
-  // EXRLoader's float output, this function's flipped copy and the validated map's copy.
-  options.budget?.charge(header.width * header.height * 48, { code: 'INVALID_ENVIRONMENT', field }, `the ${header.width} x ${header.height} OpenEXR texels`);
+  const header = validateOpenExr(bytes, field, options.maxImageDimension ?? defaultResourcePolicy.maxImageDimension);
+  // EXRLoader's float output and this function's flipped copy.
+  options.budget?.charge(header.width * header.height * 32, { code: 'INVALID_ENVIRONMENT', field }, `the ${header.width} x ${header.height} OpenEXR texels`);
   const unreadable = (reason: string, cause?: unknown): GpuRendererError =>
     new GpuRendererError('INVALID_ENVIRONMENT', `OpenEXR: unreadable or truncated file (${reason})`, cause === undefined ? { field } : { field, cause });
   let parsed: ReturnType<ExrLoaderLike['parse']> | undefined;
@@ -104,7 +105,7 @@ export async function decodeOpenExr(bytes: Uint8Array, field = 'source', loader?
   for (let y = 0; y < height; y++) {
     const src = (height - 1 - y) * width * 4;
     const dst = y * width * 4;
-    for (let k = 0; k < width * 4; k++) out[dst + k] = isHalf ? halfToFloat(data[src + k]!) : data[src + k]!;
+    for (let k = 0; k < width * 4; k++) out[dst + k] = isHalf ? halfBitsToFloat32(data[src + k]!) : data[src + k]!;
   }
   return { width, height, data: out };
 }

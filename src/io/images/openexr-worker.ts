@@ -14,6 +14,8 @@
 
 import type * as NodeModule from 'node:module';
 import type * as NodeUrl from 'node:url';
+import type * as NodeWorkerThreads from 'node:worker_threads';
+import { isNodeRuntime, nodeModule } from '../platform.ts';
 
 /** What EXRLoader.parse returns, as the worker posts it back. */
 export interface ParsedExr {
@@ -69,10 +71,8 @@ let loaderUrl: Promise<string | undefined> | undefined;
 function resolveLoaderUrl(): Promise<string | undefined> {
   loaderUrl ??= (async () => {
     try {
-      const moduleSpecifier = 'node:module';
-      const urlSpecifier = 'node:url';
-      const { createRequire } = (await import(moduleSpecifier)) as typeof NodeModule;
-      const { pathToFileURL, fileURLToPath } = (await import(urlSpecifier)) as typeof NodeUrl;
+      const { createRequire } = await nodeModule<typeof NodeModule>('node:module');
+      const { pathToFileURL, fileURLToPath } = await nodeModule<typeof NodeUrl>('node:url');
       const here = ownFile();
       const from = here === undefined ? `${process.cwd()}/` : here.startsWith('file:') ? fileURLToPath(here) : here;
       return pathToFileURL(createRequire(from).resolve('three/examples/jsm/loaders/EXRLoader.js')).href;
@@ -89,14 +89,12 @@ function resolveLoaderUrl(): Promise<string | undefined> {
  * signal's reason).
  */
 export async function parseExrInWorker(buffer: ArrayBuffer, timeoutMs: number, signal?: AbortSignal): Promise<WorkerParse> {
-  const isNode = typeof process !== 'undefined' && typeof process.versions?.node === 'string';
-  if (!isNode) return { unavailable: 'not Node.js' };
+  if (!isNodeRuntime()) return { unavailable: 'not Node.js' };
   const url = await resolveLoaderUrl();
   if (url === undefined) return { unavailable: 'three/examples/jsm/loaders/EXRLoader.js not found from this package' };
-  const specifier = 'node:worker_threads';
   let worker: NodeWorker;
   try {
-    const { Worker } = (await import(specifier)) as { Worker: new (source: string, options: object) => NodeWorker };
+    const { Worker } = (await nodeModule<typeof NodeWorkerThreads>('node:worker_threads')) as unknown as { Worker: new (source: string, options: object) => NodeWorker };
     worker = new Worker(SOURCE, { eval: true, workerData: { buffer, loaderUrl: url }, transferList: [buffer], stdout: false, stderr: false });
   } catch (error) {
     return { unavailable: `no worker thread (${(error as Error).message})` };

@@ -1,6 +1,6 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { float32ToHalfBits, halfBitsToFloat32 } from '../../../src/post/files/half-float.ts';
+import { float32ToHalfBits, halfBitsToFloat32 } from '../../../src/io/images/half-float.ts';
 import { rng } from '../../helpers/random.ts';
 
 // Node 24's Float16Array (V8's IEEE binary16, round to nearest even) is the independent reference.

@@ -13,7 +13,7 @@
  * half or float channels sampled at every texel (what HDRI maps are). Multi-part, deep, mip- or
  * rip-mapped tiled files, UINT and subsampled channels are refused with a typed error.
  */
-import { GpuRendererError } from '../errors/gpu-renderer-error.ts';
+import { GpuRendererError } from '../../errors/gpu-renderer-error.ts';
 
 export interface ExrHeaderSummary {
   width: number;
