@@ -17,7 +17,7 @@ import { encodePng } from '../io/images/png.ts';
 import { encodeImageFile } from '../io/images/image-file.ts';
 import type { WavefrontAovName } from '../post/aovs.ts';
 import { defaultAdaptiveSamplingParameters } from '../post/adaptive-sampling/converged-mask.ts';
-import { writeFrameFile } from '../sequence/frame-files.ts';
+import { writeFrameFile } from '../io/frame-files.ts';
 import type { SequenceRendererOptions } from '../sequence/sequence-renderer.ts';
 import { createProgressBar, type ProgressEstimate, type ProgressStream } from './progress.ts';
 import type { RenderSummary } from './render-format.ts';

@@ -13,7 +13,8 @@ export function isNodeRuntime(): boolean {
 
 /** A Node built-in (or Node-only package) through a variable specifier, so browser bundlers never resolve it. */
 export async function nodeModule<T>(specifier: string): Promise<T> {
-  return (await import(specifier)) as T;
+  // The comments keep Vite and webpack from warning about (or trying to resolve) the specifier.
+  return (await import(/* @vite-ignore */ /* webpackIgnore: true */ specifier)) as T;
 }
 
 /**

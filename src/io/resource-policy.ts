@@ -283,6 +283,22 @@ export async function readSource(url: URL, policy: ResolvedResourcePolicy, site:
   return readLocation(url, policy.root !== undefined && !isAllowedOrigin(url, policy) ? policy.root : undefined, policy, site, signal, url, url.protocol === 'file:' ? undefined : url.href);
 }
 
+/** What the loaders accept as a file: a path (Node), a URL (fetched), or the file's bytes. */
+export type ByteSource = string | URL | ArrayBuffer | Uint8Array;
+
+/**
+ * The one "read a path or URL" step of every loader: bytes are taken as they are; a path or URL
+ * is located (`locateSource`) and read under the policy (`readSource`). `url` is where the bytes
+ * came from (relative references resolve against it), undefined for bytes.
+ */
+export async function readByteSource(source: ByteSource, policy: ResolvedResourcePolicy, site: ResourceSite, signal?: AbortSignal): Promise<{ bytes: Uint8Array; url: URL | undefined }> {
+  if (source instanceof Uint8Array) return { bytes: source, url: undefined };
+  if (source instanceof ArrayBuffer) return { bytes: new Uint8Array(source), url: undefined };
+  if (typeof source !== 'string' && !(source instanceof URL)) refuse(site, `expected a path, a URL, an ArrayBuffer or a Uint8Array, got ${describe(source)}`);
+  const url = await locateSource(source, site);
+  return { bytes: await readSource(url, policy, site, signal), url };
+}
+
 /** Reads what an asset at `asset` names by `uri`, under the policy (see `resolveReference`). */
 export async function readReference(uri: string, asset: URL | undefined, policy: ResolvedResourcePolicy, site: ResourceSite, signal?: AbortSignal): Promise<Uint8Array> {
   signal?.throwIfAborted();

@@ -1,12 +1,12 @@
 import { GpuRendererError } from '../errors/gpu-renderer-error.ts';
 import { describe } from '../errors/validate.ts';
-import { budgetOf, derivePolicy, locateSource, readSource, resolveResourcePolicy, type ResourcePolicy } from '../io/resource-policy.ts';
+import { budgetOf, derivePolicy, readByteSource, resolveResourcePolicy, type ByteSource, type ResourcePolicy } from '../io/resource-policy.ts';
 import { decodeOpenExr, isOpenExr, type ExrLoaderConstructor } from '../io/images/openexr.ts';
 import { decodeRadianceHdr, isRadianceHdr } from '../io/images/radiance-hdr.ts';
 import { MAX_ENVIRONMENT_MAP_DIMENSION, validateEnvironmentMap, type EnvironmentMap } from './environment-map.ts';
 
 /** Where an environment map comes from: a file path (Node), a URL (fetched), or the file's bytes. */
-export type EnvironmentMapSource = string | URL | ArrayBuffer | Uint8Array;
+export type EnvironmentMapSource = ByteSource;
 
 export interface LoadEnvironmentMapOptions {
   /** Radiance multiplier, default 1. */
@@ -89,10 +89,7 @@ export async function loadEnvironmentMap(source: EnvironmentMapSource, options: 
   const { signal } = options;
   signal?.throwIfAborted();
   const site = { code: 'INVALID_ENVIRONMENT', field } as const;
-  let bytes: Uint8Array;
-  if (source instanceof Uint8Array) bytes = source;
-  else if (source instanceof ArrayBuffer) bytes = new Uint8Array(source);
-  else bytes = await readSource(await locateSource(source, site), derivePolicy(resourcePolicy, { budget }), site, signal);
+  const { bytes } = await readByteSource(source, derivePolicy(resourcePolicy, { budget }), site, signal);
   let image;
   const maxImageDimension = MAX_ENVIRONMENT_MAP_DIMENSION;
   if (isRadianceHdr(bytes)) image = decodeRadianceHdr(bytes, { field, code: 'INVALID_ENVIRONMENT', budget, maxImageDimension, limitName: 'map side' });

@@ -1,26 +1,11 @@
 /**
  * Frame files written atomically (Node.js): the bytes go to a temporary file in the target's
  * directory, then a rename (replace) or a hard link (first writer wins) gives them the target's
- * name, so a reader, an interrupted run or a second writer never sees a partial image. `node:fs`
- * is imported through a variable specifier so browser bundles never resolve it.
+ * name, so a reader, an interrupted run or a second writer never sees a partial image.
  */
-import { GpuRendererError } from '../errors/gpu-renderer-error.ts';
+import { nodeFileSystem } from './platform.ts';
 
-interface Fs {
-  writeFile(path: string, data: Uint8Array, options?: { flag?: string }): Promise<void>;
-  rename(from: string, to: string): Promise<void>;
-  link(existing: string, name: string): Promise<void>;
-  unlink(path: string): Promise<void>;
-  mkdir(path: string, options: { recursive: boolean }): Promise<unknown>;
-  access(path: string): Promise<void>;
-}
-
-async function nodeFs(): Promise<Fs> {
-  const isNode = typeof process !== 'undefined' && typeof process.versions?.node === 'string';
-  if (!isNode) throw new GpuRendererError('INVALID_STATE', 'frame files need Node.js (node:fs)');
-  const specifier = 'node:fs/promises';
-  return (await import(specifier)) as Fs;
-}
+const nodeFs = () => nodeFileSystem('writing frame files');
 
 function splitPath(path: string): { dir: string; base: string } {
   const slash = Math.max(path.lastIndexOf('/'), path.lastIndexOf('\\'));
