@@ -1,4 +1,7 @@
-/** Column-major 4x4 matrices as glTF stores them (section 3.5.3): element (row r, column c) is m[c * 4 + r]. */
+/**
+ * Column-major 4x4 matrices as glTF and WGSL store them (glTF 2.0 section 3.5.3): element (row r,
+ * column c) is m[c * 4 + r]. Shared by the glTF reader and the animation code.
+ */
 
 export type Mat4 = number[];
 
@@ -14,15 +17,32 @@ export function multiply(a: ArrayLike<number>, b: ArrayLike<number>): Mat4 {
   return out;
 }
 
-/** T * R * S from a translation, a unit quaternion (x, y, z, w) and a scale (glTF node TRS). */
-export function composeTrs(t: ArrayLike<number>, q: ArrayLike<number>, s: ArrayLike<number>): Mat4 {
-  const [x, y, z, w] = [q[0], q[1], q[2], q[3]];
-  return [
-    (1 - 2 * (y * y + z * z)) * s[0], 2 * (x * y + z * w) * s[0], 2 * (x * z - y * w) * s[0], 0,
-    2 * (x * y - z * w) * s[1], (1 - 2 * (x * x + z * z)) * s[1], 2 * (y * z + x * w) * s[1], 0,
-    2 * (x * z + y * w) * s[2], 2 * (y * z - x * w) * s[2], (1 - 2 * (x * x + y * y)) * s[2], 0,
-    t[0], t[1], t[2], 1,
-  ];
+/** An array or typed array to read from or write into. */
+export type Numbers = { [index: number]: number; readonly length: number };
+
+/**
+ * Column-major local matrix M = T * R * S of one node (glTF 2.0 section 3.5.3), written into
+ * `out[o .. o + 16]`; R is the rotation matrix of the unit quaternion (x, y, z, w).
+ */
+export function composeTrs(t: Numbers, to: number, r: Numbers, ro: number, s: Numbers, so: number, out: Numbers, o = 0): void {
+  const x = r[ro], y = r[ro + 1], z = r[ro + 2], w = r[ro + 3];
+  const sx = s[so], sy = s[so + 1], sz = s[so + 2];
+  out[o] = (1 - 2 * (y * y + z * z)) * sx;
+  out[o + 1] = 2 * (x * y + z * w) * sx;
+  out[o + 2] = 2 * (x * z - y * w) * sx;
+  out[o + 3] = 0;
+  out[o + 4] = 2 * (x * y - z * w) * sy;
+  out[o + 5] = (1 - 2 * (x * x + z * z)) * sy;
+  out[o + 6] = 2 * (y * z + x * w) * sy;
+  out[o + 7] = 0;
+  out[o + 8] = 2 * (x * z + y * w) * sz;
+  out[o + 9] = 2 * (y * z - x * w) * sz;
+  out[o + 10] = (1 - 2 * (x * x + y * y)) * sz;
+  out[o + 11] = 0;
+  out[o + 12] = t[to];
+  out[o + 13] = t[to + 1];
+  out[o + 14] = t[to + 2];
+  out[o + 15] = 1;
 }
 
 /** Determinant of the upper-left 3x3 (the linear part of an affine transform). */
