@@ -14,7 +14,7 @@ import type {
   WavefrontTextureInput,
   WavefrontTextureRefInput,
 } from '../../scene/types.ts';
-import { accessorToFloat32 } from './accessors.ts';
+import { accessorToFloat32 } from '../accessors.ts';
 import { cameraFromNode, framingCamera, type GltfBounds, type GltfCameraInfo } from './cameras.ts';
 import { readGltfDocument, type GltfDecoderModules, type GltfSource } from './document-reader.ts';
 import { failGltf, pointer } from './errors.ts';
