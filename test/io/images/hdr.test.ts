@@ -191,3 +191,18 @@ test('Radiance HDR: truncated and malformed files raise INVALID_ENVIRONMENT', ()
   bad[start + 3] = 15;
   expectInvalid(() => decodeRadianceHdr(bad));
 });
+
+test('limits: the side limit and the allocation limit are checked from the header, before decoding, with the caller\'s code and field', () => {
+  const header = (w: number, h: number): Uint8Array => new TextEncoder().encode(`#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y ${h} +X ${w}\n${'\0'.repeat(4 * h)}`);
+  // 64 x 64 texels need 64 * 64 * 20 bytes (RGBE scanlines and float texels): one byte less is refused.
+  assert.throws(() => decodeHdr(header(64, 64), { maxDecodedBytes: 64 * 64 * 20 - 1 }), (e: unknown) => e instanceof GpuRendererError && e.code === 'INVALID_OPTION' && e.field === 'bytes' && /maxDecodedBytes/.test(e.message));
+  assert.throws(
+    () => decodeRadianceHdr(header(65, 2), { field: 'environment.map', code: 'INVALID_SCENE_FILE', maxImageDimension: 64, limitName: 'map side' }),
+    (e: unknown) => e instanceof GpuRendererError && e.code === 'INVALID_SCENE_FILE' && e.field === 'environment.map' && /exceed the largest map side of 64/.test(e.message),
+  );
+  // Within both limits a black image (every exponent byte 0) decodes.
+  const w = 8;
+  const h = 2;
+  const ok = decodeRadianceHdr(new Uint8Array([...new TextEncoder().encode(`#?RADIANCE\n\n-Y ${h} +X ${w}\n`), ...new Uint8Array(4 * w * h)]), { maxImageDimension: 8, maxDecodedBytes: w * h * 20 });
+  assert.deepEqual([ok.width, ok.height, ok.data[0], ok.data[3]], [w, h, 0, 1]);
+});
