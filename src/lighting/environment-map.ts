@@ -1,7 +1,7 @@
 import { GpuRendererError } from '../errors/gpu-renderer-error.ts';
 import { describe, fail, requireFiniteNumber, requireInteger } from '../errors/validate.ts';
 import { directionToEquirectUv } from './equirect.ts';
-import { halfBitsToFloat32 } from '../io/images/half-float.ts';
+import { halfBitsToFloat32 } from '../math/half-float.ts';
 import type { Vec3 } from './vec3.ts';
 import { requireKnownKeys } from './known-keys.ts';
 import { maxRadiance } from '../scene/limits.ts';

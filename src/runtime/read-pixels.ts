@@ -1,5 +1,5 @@
 import { BufferUsage, MapMode } from '../gpu/webgpu-constants.ts';
-import { halfBitsToFloat32 } from '../io/images/half-float.ts';
+import { halfBitsToFloat32 } from '../math/half-float.ts';
 import type { GpuRendererFormat, RendererPixels } from './renderer-types.ts';
 
 /**

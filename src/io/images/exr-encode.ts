@@ -7,7 +7,7 @@ import { zlibSync } from 'fflate';
 import { GpuRendererError } from '../../errors/gpu-renderer-error.ts';
 import { wavefrontAovChannels, wavefrontIntegerAovs, isWavefrontAovName, type WavefrontAovName } from '../../post/aovs.ts';
 import { ByteWriter } from './byte-writer.ts';
-import { float32ToHalfBits } from './half-float.ts';
+import { float32ToHalfBits } from '../../math/half-float.ts';
 import { requireLinearRgbaImage, type LinearRgbaImage } from './linear-image.ts';
 
 /** `none`: raw; `zips`: zlib per scanline; `zip`: zlib per block of 16 scanlines (OpenEXR's ZIP). */

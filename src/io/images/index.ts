@@ -3,7 +3,7 @@ export { encodeExr, type EncodeExrOptions, type ExrCompression, type ExrLayer, t
 export { encodeHdr, encodeRgbe, type EncodeHdrOptions } from './hdr-encode.ts';
 export { decodeHdr, decodeRadianceHdr, isRadianceHdr, type DecodeRadianceHdrOptions, type DecodedHdrImage } from './radiance-hdr.ts';
 export { decodeOpenExr, isOpenExr, type DecodeOpenExrOptions, type ExrLoaderLike, type ExrLoaderConstructor } from './openexr.ts';
-export { float32ToHalfBits, halfBitsToFloat32 } from './half-float.ts';
+export { float32ToHalfBits, halfBitsToFloat32 } from '../../math/half-float.ts';
 export { encodePng, type Rgba8Image } from './png.ts';
 export { writePng } from './png-node.ts';
 export {

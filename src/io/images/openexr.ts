@@ -1,6 +1,6 @@
 import { GpuRendererError } from '../../errors/gpu-renderer-error.ts';
 import { defaultResourcePolicy, type DecodeBudget } from '../resource-policy.ts';
-import { halfBitsToFloat32 } from './half-float.ts';
+import { halfBitsToFloat32 } from '../../math/half-float.ts';
 import { validateOpenExr } from './openexr-header.ts';
 import { parseExrInWorker } from './openexr-worker.ts';
 import type { DecodedHdrImage } from './radiance-hdr.ts';

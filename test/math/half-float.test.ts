@@ -1,7 +1,7 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { float32ToHalfBits, halfBitsToFloat32 } from '../../../src/io/images/half-float.ts';
-import { rng } from '../../helpers/random.ts';
+import { float32ToHalfBits, halfBitsToFloat32 } from '../../src/math/half-float.ts';
+import { rng } from '../helpers/random.ts';
 
 // Node 24's Float16Array (V8's IEEE binary16, round to nearest even) is the independent reference.
 const reference = new Float16Array(1);
