@@ -16,6 +16,7 @@ import { isMeshoptFallback, validateGltfJson } from './json-validation.ts';
 import { budgetOf, derivePolicy, readByteSource, type DecodeBudget, type ResolvedResourcePolicy } from '../resource-policy.ts';
 import { JSON_BYTES_PER_VALUE, MAX_JSON_DEPTH, scanJson } from '../json-scan.ts';
 import { chargeGeometry, chargeImages } from './decode-budget.ts';
+import { nodeModule } from '../platform.ts';
 import { readResource } from './resources.ts';
 import { validateSparseIndices } from './sparse-indices.ts';
 
@@ -43,9 +44,8 @@ let dracoDecoder: Promise<unknown> | undefined;
 let meshoptDecoder: Promise<unknown> | undefined;
 
 async function loadDraco(): Promise<unknown> {
-  // A variable specifier: the package is Node-oriented, browser builds pass their own decoder.
-  const specifier = 'draco3dgltf';
-  const draco3d = ((await import(specifier)) as { default: { createDecoderModule: () => Promise<unknown> } }).default;
+  // Node-oriented: browser builds pass their own decoder.
+  const draco3d = (await nodeModule<{ default: { createDecoderModule: () => Promise<unknown> } }>('draco3dgltf')).default;
   return draco3d.createDecoderModule();
 }
 
