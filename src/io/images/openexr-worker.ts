@@ -14,7 +14,6 @@
 
 import type * as NodeModule from 'node:module';
 import type * as NodeUrl from 'node:url';
-import type * as NodeWorkerThreads from 'node:worker_threads';
 import { isNodeRuntime, nodeModule } from '../platform.ts';
 
 /** What EXRLoader.parse returns, as the worker posts it back. */
@@ -94,7 +93,7 @@ export async function parseExrInWorker(buffer: ArrayBuffer, timeoutMs: number, s
   if (url === undefined) return { unavailable: 'three/examples/jsm/loaders/EXRLoader.js not found from this package' };
   let worker: NodeWorker;
   try {
-    const { Worker } = (await nodeModule<typeof NodeWorkerThreads>('node:worker_threads')) as unknown as { Worker: new (source: string, options: object) => NodeWorker };
+    const { Worker } = await nodeModule<{ Worker: new (source: string, options: object) => NodeWorker }>('node:worker_threads');
     worker = new Worker(SOURCE, { eval: true, workerData: { buffer, loaderUrl: url }, transferList: [buffer], stdout: false, stderr: false });
   } catch (error) {
     return { unavailable: `no worker thread (${(error as Error).message})` };
