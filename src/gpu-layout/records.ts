@@ -599,7 +599,7 @@ export const denoiseUniformsLayout: StructLayout = defineStructLayout('DenoiseUn
   ['sigmaDepth', 'f32', 'depth edge-stopping, in depth-gradient units'],
 ]);
 
-/** One convolution of the OIDN network (src/post/denoise/oidn/conv.wesl). */
+/** One convolution of the OIDN network (src/film/denoise/oidn/conv.wesl). */
 export const oidnConvUniformsLayout: StructLayout = defineStructLayout('OidnConvUniforms', 1, [
   ['size', 'vec2u', 'resolution the convolution runs at (width, height)'],
   ['sourceA', 'u32', 'vec4 channel groups of the first source'],
@@ -610,7 +610,7 @@ export const oidnConvUniformsLayout: StructLayout = defineStructLayout('OidnConv
   ['blocks', 'u32', '16-channel output blocks (the weights hold blocks x 4 bias vec4s first)'],
 ]);
 
-/** One tile of the OIDN input, output and autoexposure passes (src/post/denoise/oidn/image.wesl). */
+/** One tile of the OIDN input, output and autoexposure passes (src/film/denoise/oidn/image.wesl). */
 export const oidnImageUniformsLayout: StructLayout = defineStructLayout('OidnImageUniforms', 1, [
   ['imageSize', 'vec2u'],
   ['tileOrigin', 'vec2u', 'image pixel of the tile tensor\'s pixel (0, 0)'],

@@ -3,9 +3,9 @@
  * presentation, submission bounds, feature flags and the per-frame budget. Every error names its field.
  */
 import { fail, requireFiniteNumber, requireInteger, requireNumberInRange } from '../errors/validate.ts';
-import { defaultAdaptiveSamplingParameters } from '../post/adaptive-sampling/converged-mask.ts';
+import { defaultAdaptiveSamplingParameters } from '../film/adaptive/converged-mask.ts';
 import { resolveFeatureFlags, type WavefrontFeatureFlagResolution } from './feature-flags.ts';
-import type { WavefrontDenoiserName } from '../post/denoise/denoiser.ts';
+import type { WavefrontDenoiserName } from '../film/denoise/denoiser.ts';
 import type { WavefrontAdaptiveSettings, WavefrontDenoiseOptions, WavefrontDenoiseSettings, WavefrontPresentationOutput, WavefrontProgressListener } from './output-types.ts';
 
 /** Most samples per pixel one renderFrame call takes, and the adaptive prediction's ceiling. */

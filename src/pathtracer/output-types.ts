@@ -2,7 +2,7 @@
  * Public types of the production-output surface (issue 9): adaptive sampling, the denoiser,
  * presentation, progress events and the mirrored frame diagnostics.
  */
-import type { WavefrontDenoiserName } from '../post/denoise/denoiser.ts';
+import type { WavefrontDenoiserName } from '../film/denoise/denoiser.ts';
 import type { TransportExperimentName, WavefrontFeatureFlagState, WavefrontTransportExperimentState } from './feature-flags.ts';
 
 /**

@@ -1,5 +1,5 @@
 import type { WavefrontLightingOptions, WavefrontSceneLightInput } from '../lighting/lighting-options.ts';
-import type { WavefrontAovName } from '../post/aovs.ts';
+import type { WavefrontAovName } from '../film/aovs.ts';
 import type { WavefrontCameraInput, WavefrontSceneDescription, WavefrontToneMapping } from '../scene/types.ts';
 import type { WavefrontOutputOptions, WavefrontRenderFrameOptions } from './output-options.ts';
 import type { AccelerationBuildMode } from './scene/prepare-scene.ts';

@@ -7,7 +7,7 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { createWavefrontPathTracingComputeRenderer } from '../../src/pathtracer/index.ts';
 import { transportExperimentNames } from '../../src/pathtracer/feature-flags.ts';
-import { encodeRadianceToRgba8 } from '../../src/post/tone-mapping.ts';
+import { encodeRadianceToRgba8 } from '../../src/film/tone-mapping.ts';
 import { GpuRendererError } from '../../src/errors/gpu-renderer-error.ts';
 import { pathTracerBindings } from '../../src/gpu-layout/bindings.ts';
 import { LUMINANCE_FRACTION_BITS, queueBufferWords, queueCounterSlots } from '../../src/gpu-layout/constants.ts';
