@@ -19,7 +19,7 @@ import { createWavefrontPathTracingComputeConfig, type WavefrontPathTracingCompu
 import { instanceMaterial } from './scene/flatten-primitives.ts';
 import { AdaptiveScheduler, createAdaptivePipelines } from '../film/adaptive/scheduler.ts';
 import type { WavefrontDenoiser, WavefrontDenoiserFactory } from '../film/denoise/denoiser.ts';
-import { prepareWavefrontDenoiser, resolveWavefrontDenoiser } from '../film/denoise/atrous-denoiser.ts';
+import { prepareWavefrontDenoiser, resolveWavefrontDenoiser } from '../film/denoise/registry.ts';
 import { DispatchTally } from './dispatch-tally.ts';
 import { readAovImage, readMeanRadiance, readRgbaImage, type InstanceIds } from '../film/accumulation/readback.ts';
 import { FrameReadbackRing, frameStatsFromCounters, type FrameReadout } from './frame-stats.ts';

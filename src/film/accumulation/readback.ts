@@ -1,26 +1,49 @@
 import { adaptiveListSlots } from '../../gpu-layout/constants.ts';
+import { filmAovPixelLayout, filmMomentsLayout, filmPixelLayout } from '../../gpu-layout/records.ts';
+import { fieldOf, type StructLayout } from '../../gpu-layout/struct-layout.ts';
 import { luminance } from '../../lighting/emissive-lights.ts';
 import type { WavefrontAovName } from '../aovs.ts';
 import { readGpuBuffer } from '../../pathtracer/gpu-buffers.ts';
 import type { WavefrontRadianceImage } from '../../pathtracer/types.ts';
 
 /**
- * Reads of the film: the accumulation holds radiance sums with the sample count in alpha; the AOV
- * film sums of (albedo, depth), (normal, hits) and (emission, squared luminance of the radiance
- * without it) per pixel; the moments film the sum of the
- * even-indexed samples with their count, and the sums of squared radiance and squared luminance; the
- * id film 1 + the instance index of the pixel's first sample that reached a non-specular surface.
- * Readers divide by the sample count.
+ * Reads of the film. Its records (FilmPixel, FilmAovPixel, FilmMoments in gpu-layout/records.ts)
+ * hold sums over each pixel's samples; readers divide by the sample count. The id film holds
+ * 1 + the instance index of the pixel's first sample that reached a non-specular surface.
  */
+
+/** Where a record's fields start in a float32 view of an array of it, and the record's stride. */
+export interface FloatFields<Name extends string> {
+  readonly stride: number;
+  readonly at: Readonly<Record<Name, number>>;
+}
+
+export function floatFields<Name extends string>(layout: StructLayout, names: readonly Name[]): FloatFields<Name> {
+  const at = Object.fromEntries(names.map((n) => [n, fieldOf(layout, n).offset / 4])) as Record<Name, number>;
+  return { stride: layout.size / 4, at };
+}
+
+const pixelFields = floatFields(filmPixelLayout, ['radiance', 'samples']);
+const aovFields = floatFields(filmAovPixelLayout, ['albedo', 'depth', 'normal', 'hits', 'emission', 'reflectedLuminanceSquared']);
+const momentFields = floatFields(filmMomentsLayout, ['radianceSquared']);
+
+/** The film's radiance sums and sample counts, read back. */
+async function readFilmPixels(device: GPUDevice, film: GPUBuffer, pixels: number): Promise<{ radiance(i: number, c: number): number; samples(i: number): number }> {
+  const raw = new Float32Array(await readGpuBuffer(device, film, pixels * filmPixelLayout.size));
+  const { stride, at } = pixelFields;
+  return { radiance: (i, c) => raw[stride * i + at.radiance + c]!, samples: (i) => raw[stride * i + at.samples]! };
+}
+
 export async function readMeanRadiance(device: GPUDevice, film: GPUBuffer, width: number, height: number): Promise<WavefrontRadianceImage> {
-  const raw = new Float32Array(await readGpuBuffer(device, film, width * height * 16));
-  const data = new Float32Array(width * height * 4);
-  for (let i = 0; i < width * height; i++) {
-    const n = raw[4 * i + 3]!;
+  const pixels = width * height;
+  const f = await readFilmPixels(device, film, pixels);
+  const data = new Float32Array(pixels * 4);
+  for (let i = 0; i < pixels; i++) {
+    const n = f.samples(i);
     const inv = n > 0 ? 1 / n : 0;
-    data[4 * i] = raw[4 * i]! * inv;
-    data[4 * i + 1] = raw[4 * i + 1]! * inv;
-    data[4 * i + 2] = raw[4 * i + 2]! * inv;
+    data[4 * i] = f.radiance(i, 0) * inv;
+    data[4 * i + 1] = f.radiance(i, 1) * inv;
+    data[4 * i + 2] = f.radiance(i, 2) * inv;
     data[4 * i + 3] = 1;
   }
   return { width, height, data };
@@ -64,10 +87,10 @@ export function varianceOfMean(sum: number, sum2: number, n: number): number {
  */
 export async function readAovImage(device: GPUDevice, buffers: FilmBuffers, name: WavefrontAovName, width: number, height: number, ids: InstanceIds): Promise<WavefrontRadianceImage> {
   const pixels = width * height;
-  const counts = new Float32Array(await readGpuBuffer(device, buffers.film, pixels * 16));
+  const film = await readFilmPixels(device, buffers.film, pixels);
   const data = new Float32Array(pixels * 4);
   if (name === 'sampleCount') {
-    for (let i = 0; i < pixels; i++) data.set([counts[4 * i + 3]!, 0, 0, 1], 4 * i);
+    for (let i = 0; i < pixels; i++) data.set([film.samples(i), 0, 0, 1], 4 * i);
     if (buffers.adaptive) {
       // g: the error of the last convergence test (F32 max below the minimum samples); b: 1 while sampling.
       const error = new Float32Array(await readGpuBuffer(device, buffers.adaptive.error, pixels * 4));
@@ -84,29 +107,32 @@ export async function readAovImage(device: GPUDevice, buffers: FilmBuffers, name
     for (let i = 0; i < pixels; i++) data.set([raw[i]! === 0 ? -1 : table[raw[i]! - 1]!, 0, 0, 1], 4 * i);
     return { width, height, data };
   }
-  const aovs = new Float32Array(await readGpuBuffer(device, buffers.aovs, pixels * 48));
+  const aovs = new Float32Array(await readGpuBuffer(device, buffers.aovs, pixels * filmAovPixelLayout.size));
+  const { stride, at } = aovFields;
+  const aov = (i: number, field: keyof typeof at, c = 0): number => aovs[stride * i + at[field] + c]!;
   if (name === 'variance') {
-    const raw = new Float32Array(await readGpuBuffer(device, buffers.moments, pixels * 32));
+    const moments = new Float32Array(await readGpuBuffer(device, buffers.moments, pixels * filmMomentsLayout.size));
+    const m = momentFields;
     for (let i = 0; i < pixels; i++) {
-      const n = counts[4 * i + 3]!;
-      const sum = [counts[4 * i]!, counts[4 * i + 1]!, counts[4 * i + 2]!];
-      const sum2 = [raw[8 * i + 4]!, raw[8 * i + 5]!, raw[8 * i + 6]!];
+      const n = film.samples(i);
+      const sum = [0, 1, 2].map((c) => film.radiance(i, c));
+      const sum2 = [0, 1, 2].map((c) => moments[m.stride * i + m.at.radianceSquared + c]!);
       data.set([0, 1, 2].map((c) => varianceOfMean(sum[c]!, sum2[c]!, n)), 4 * i);
       // Luminance is linear, so the luminance of a sum is the sum of the luminances.
-      const reflected = sum.map((v, c) => v - aovs[12 * i + 8 + c]!);
-      data[4 * i + 3] = varianceOfMean(luminance(reflected), aovs[12 * i + 11]!, n);
+      const reflected = sum.map((v, c) => v - aov(i, 'emission', c));
+      data[4 * i + 3] = varianceOfMean(luminance(reflected), aov(i, 'reflectedLuminanceSquared'), n);
     }
     return { width, height, data };
   }
   for (let i = 0; i < pixels; i++) {
-    const n = counts[4 * i + 3]!;
+    const n = film.samples(i);
     const inv = n > 0 ? 1 / n : 0;
-    const o = 12 * i;
-    const coverage = aovs[o + 7]! * inv;
-    if (name === 'albedo') data.set([aovs[o]! * inv, aovs[o + 1]! * inv, aovs[o + 2]! * inv, coverage], 4 * i);
-    else if (name === 'depth') data.set([aovs[o + 3]! * inv, 0, 0, coverage], 4 * i);
-    else if (name === 'normal') data.set([aovs[o + 4]! * inv, aovs[o + 5]! * inv, aovs[o + 6]! * inv, coverage], 4 * i);
-    else data.set([aovs[o + 8]! * inv, aovs[o + 9]! * inv, aovs[o + 10]! * inv, coverage], 4 * i);
+    const coverage = aov(i, 'hits') * inv;
+    const mean = (field: 'albedo' | 'normal' | 'emission'): number[] => [0, 1, 2].map((c) => aov(i, field, c) * inv);
+    if (name === 'albedo') data.set([...mean('albedo'), coverage], 4 * i);
+    else if (name === 'depth') data.set([aov(i, 'depth') * inv, 0, 0, coverage], 4 * i);
+    else if (name === 'normal') data.set([...mean('normal'), coverage], 4 * i);
+    else data.set([...mean('emission'), coverage], 4 * i);
   }
   return { width, height, data };
 }

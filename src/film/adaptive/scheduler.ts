@@ -7,7 +7,7 @@ import { pathTracerBindings } from '../../gpu-layout/bindings.ts';
 import { computePipeline, type KernelPipeline } from '../../pathtracer/pipelines.ts';
 import type { DispatchTally } from '../../pathtracer/dispatch-tally.ts';
 import { maxSamplesPerFrame } from '../../pathtracer/output-options.ts';
-import type { WavefrontAdaptiveSettings } from '../../pathtracer/output-types.ts';
+import type { WavefrontAdaptiveSettings } from './settings.ts';
 import type { ShaderFeatures } from '../../shaders/features.ts';
 import { rendererWavefrontComputeWorkgroupSize } from '../../gpu-layout/constants.ts';
 

@@ -1,21 +1,16 @@
 /**
- * The renderer's denoisers behind the one interface of src/film/denoise/denoiser.ts: the
- * edge-avoiding a-trous filter (below) and Open Image Denoise's network on the film
- * (src/film/denoise/oidn), and prepareWavefrontDenoiser, which resolves the options against the
- * device, loads and compiles what the chosen one needs, and returns its factory.
+ * The edge-avoiding à-trous denoiser (Dammertz et al., "Edge-Avoiding À-Trous Wavelet Transform for
+ * fast Global Illumination Filtering", HPG 2010, with SVGF's variance-guided luminance weight): a
+ * fast preview behind the WavefrontDenoiser interface of denoiser.ts.
  */
-import { GpuRendererError } from '../../errors/gpu-renderer-error.ts';
 import { pathTracerBindings } from '../../gpu-layout/bindings.ts';
 import { denoiseUniformsLayout } from '../../gpu-layout/records.ts';
 import { writeStruct } from '../../gpu-layout/struct-layout.ts';
 import { BufferUsage } from '../../gpu/webgpu-constants.ts';
-import type { DenoiserDispatchTally, WavefrontDenoiser, WavefrontDenoiserFactory, WavefrontDenoiserTarget } from './denoiser.ts';
-import { compileOidnPipelines, OidnNetwork, oidnPrecisionFor, type OidnImageDenoiser, type OidnPipelines } from './oidn/oidn-network.ts';
-import type { UNetModel } from './oidn/unet.ts';
-import { loadOidnModel, oidnModelFromBytes, type OidnBuiltinWeights } from './oidn/weights.ts';
+import type { DenoiserDispatchTally, WavefrontDenoiser, WavefrontDenoiserEntry, WavefrontDenoiserTarget } from './denoiser.ts';
+import type { WavefrontDenoiseSettings } from './settings.ts';
 import type { ShaderFeatures } from '../../shaders/features.ts';
 import { createProgramBindGroups, type PathTracerResourceMap } from '../../pathtracer/bind-groups.ts';
-import type { WavefrontDenoiseSettings } from '../../pathtracer/output-types.ts';
 import { computePipeline, type KernelPipeline } from '../../pathtracer/pipelines.ts';
 
 const bindingOf = (name: string): number => pathTracerBindings[name as keyof typeof pathTracerBindings].binding;
@@ -107,78 +102,12 @@ export class AtrousDenoisePass implements WavefrontDenoiser {
   }
 }
 
-/** Open Image Denoise's network on the renderer's film (radiance and AOV sums over the sample count). */
-export class OidnFilmDenoiser implements WavefrontDenoiser {
-  readonly name = 'oidn';
-  readonly network: OidnNetwork;
-  readonly image: OidnImageDenoiser;
-
-  constructor(target: WavefrontDenoiserTarget, model: UNetModel, pipelines: OidnPipelines, settings: WavefrontDenoiseSettings) {
-    const film = target.resources.film as GPUBuffer;
-    const aovs = target.resources.filmAovs as GPUBuffer;
-    this.network = new OidnNetwork(target.device, model, pipelines, target.createBuffer);
-    this.image = this.network.createImageDenoiser(
-      target.width,
-      target.height,
-      {
-        color: film,
-        divideByCount: true,
-        albedo: { buffer: aovs, stride: 3, offset: 0 },
-        normal: { buffer: aovs, stride: 3, offset: 1 },
-        ...(settings.emission === 'exact' ? { emission: { buffer: aovs, stride: 3, offset: 2 } } : {}),
-      },
-      target.resources.denoised as GPUBuffer,
-      { maxMemoryBytes: settings.maxMemoryMB * 1024 * 1024 },
-      target.createBuffer,
-    );
-  }
-
-  encode(encoder: GPUCommandEncoder, tally: DenoiserDispatchTally | null): void {
-    this.image.encode(encoder);
-    if (tally) for (const [workgroups, size] of this.image.dispatches()) tally.direct(workgroups, size);
-  }
-
-  destroy(): void {
-    this.image.destroy();
-    this.network.destroy();
-  }
-}
-
-/** Whether the device can run the OIDN network (the core WebGPU limits always can). */
-export function oidnRunsOn(device: GPUDevice): boolean {
-  const l = device.limits;
-  return l.maxComputeWorkgroupStorageSize >= 8192 && l.maxStorageBuffersPerShaderStage >= 5 && l.maxComputeInvocationsPerWorkgroup >= 256;
-}
-
-/** Resolves `denoiser: 'auto'` in place: OIDN where the device runs it, else à-trous. */
-export function resolveWavefrontDenoiser(output: { denoise: WavefrontDenoiseSettings | null }, device: GPUDevice): void {
-  const requested = output.denoise;
-  if (!requested) return;
-  const runsOidn = oidnRunsOn(device);
-  if (requested.denoiser === 'oidn' && !runsOidn) throw new GpuRendererError('INVALID_OPTION', "this device's limits are below what the OIDN network needs; use denoise: 'atrous'", { field: 'denoise.denoiser' });
-  if (requested.denoiser === 'auto') output.denoise = { ...requested, denoiser: runsOidn ? 'oidn' : 'atrous' };
-}
-
-/**
- * Loads the OIDN weights and compiles the chosen denoiser's pipelines (after
- * resolveWavefrontDenoiser); returns its factory. Updates the settings to what runs: user weights
- * decide whether the network reads the albedo and normal AOVs (auxiliary), and precision 'auto'
- * becomes 'f16' or 'f32'.
- */
-export async function prepareWavefrontDenoiser(
-  device: GPUDevice,
-  settings: WavefrontDenoiseSettings,
-  customWeights: Uint8Array | null,
-  features: ShaderFeatures,
-): Promise<WavefrontDenoiserFactory> {
-  if (settings.denoiser === 'auto') throw new Error('prepareWavefrontDenoiser: resolve the denoiser first');
-  if (settings.denoiser === 'atrous') {
+/** The à-trous entry of the denoiser registry: runs on every WebGPU device. */
+export const atrousDenoiser: WavefrontDenoiserEntry = {
+  name: 'atrous',
+  runsOn: () => true,
+  async prepare(device, settings, _customWeights, features) {
     const pipelines = await createDenoisePipelines(device, features);
     return { name: 'atrous', create: (target) => new AtrousDenoisePass(target, pipelines, settings) };
-  }
-  const model = customWeights ? oidnModelFromBytes(customWeights) : await loadOidnModel(settings.weights as OidnBuiltinWeights);
-  settings.auxiliary = model.inputChannels > 3;
-  settings.precision = oidnPrecisionFor(device, settings.precision);
-  const pipelines = await compileOidnPipelines(device, settings.precision);
-  return { name: 'oidn', create: (target) => new OidnFilmDenoiser(target, model, pipelines, settings) };
-}
+  },
+};

@@ -4,9 +4,11 @@
  * (rgb, 1) linear radiance per pixel to the renderer's `denoised` buffer, all on the GPU, encoded
  * into the renderer's own command encoder. A factory is prepared once per renderer (weights loaded,
  * pipelines compiled: the asynchronous part) and creates the denoiser once the renderer's buffers
- * exist. Implementations: 'oidn' (Open Image Denoise's U-Net, src/film/denoise/oidn) and 'atrous'
- * (the edge-avoiding à-trous preview, src/film/denoise/atrous-denoiser.ts).
+ * exist. Implementations (registry.ts): 'oidn' (Open Image Denoise's U-Net, oidn-denoiser.ts) and
+ * 'atrous' (the edge-avoiding à-trous preview, atrous-denoiser.ts).
  */
+import type { ShaderFeatures } from '../../shaders/features.ts';
+import type { WavefrontDenoiseSettings } from './settings.ts';
 
 /** The denoisers the renderer ships. */
 export type WavefrontDenoiserName = 'oidn' | 'atrous';
@@ -22,9 +24,9 @@ export interface WavefrontDenoiserTarget {
   width: number;
   height: number;
   /**
-   * The renderer's buffers by binding name; every denoiser may read `film` (vec4f: radiance sum,
-   * sample count), `filmAovs` (3 vec4f per pixel: (albedo, depth), (normal, hits), (emission,
-   * squared luminance) sums) and `filmMoments`, and writes `denoised` (vec4f: rgb, 1).
+   * The renderer's buffers by binding name; every denoiser may read `film`, `filmAovs` and
+   * `filmMoments` (the FilmPixel, FilmAovPixel and FilmMoments records of gpu-layout/records.ts:
+   * sums over each pixel's samples) and writes `denoised` (vec4f: rgb, 1).
    */
   resources: Readonly<Record<string, GPUBuffer | GPUTextureView>>;
   /** Allocates a buffer the renderer tracks (memory statistics) and releases on destroy. */
@@ -42,4 +44,16 @@ export interface WavefrontDenoiser {
 export interface WavefrontDenoiserFactory {
   readonly name: WavefrontDenoiserName;
   create(target: WavefrontDenoiserTarget): WavefrontDenoiser;
+}
+
+/** What the renderer knows of a denoiser before it runs: a row of the registry (registry.ts). */
+export interface WavefrontDenoiserEntry {
+  readonly name: WavefrontDenoiserName;
+  /** Whether this device's limits run it ('auto' picks the first registry entry that does). */
+  runsOn(device: GPUDevice): boolean;
+  /**
+   * The asynchronous part, once per renderer: loads and compiles what it needs and returns its
+   * factory; may update `settings` to what runs (e.g. a precision of 'auto' becomes 'f16' or 'f32').
+   */
+  prepare(device: GPUDevice, settings: WavefrontDenoiseSettings, customWeights: Uint8Array | null, features: ShaderFeatures): Promise<WavefrontDenoiserFactory>;
 }

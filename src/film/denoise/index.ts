@@ -1,5 +1,5 @@
 export { denoiseAtrousReference, demodulationMinAlbedo, unknownVariance, type AtrousDenoiseInput, type AtrousDenoiseSettings } from './atrous-reference.ts';
-export type { DenoiserDispatchTally, WavefrontDenoiser, WavefrontDenoiserFactory, WavefrontDenoiserName, WavefrontDenoiserTarget } from './denoiser.ts';
+export type { DenoiserDispatchTally, WavefrontDenoiser, WavefrontDenoiserEntry, WavefrontDenoiserFactory, WavefrontDenoiserName, WavefrontDenoiserTarget } from './denoiser.ts';
 export {
   OidnNetwork,
   OidnImageDenoiser,
