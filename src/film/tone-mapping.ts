@@ -5,6 +5,9 @@
  */
 import { GpuRendererError } from '../errors/gpu-renderer-error.ts';
 import type { WavefrontToneMapping } from '../scene/types.ts';
+import { linearToSrgb } from '../color/srgb.ts';
+
+export { linearToSrgb, srgbToLinear } from '../color/srgb.ts';
 
 export type Rgb = [number, number, number];
 type RgbInput = readonly [number, number, number] | readonly number[];
@@ -142,16 +145,6 @@ export function toneMapAgx(rgb: RgbInput): Rgb {
   const linear = outset.map((v) => Math.pow(Math.max(v, 0), 2.2));
   const out = mul3(rec2020ToRec709, linear);
   return [clamp01(out[0]), clamp01(out[1]), clamp01(out[2])];
-}
-
-/** Exact sRGB encoding (IEC 61966-2-1:1999), scalar. */
-export function linearToSrgb(x: number): number {
-  return x <= 0.0031308 ? x * 12.92 : 1.055 * Math.pow(x, 1 / 2.4) - 0.055;
-}
-
-/** Exact sRGB decoding (IEC 61966-2-1:1999), scalar; the inverse of linearToSrgb. */
-export function srgbToLinear(x: number): number {
-  return x <= 0.04045 ? x / 12.92 : Math.pow((x + 0.055) / 1.055, 2.4);
 }
 
 /** Display-referred linear RGB in [0, 1]; exposure is applied by the caller before this. */
