@@ -8,8 +8,9 @@ import { resolveFeatureFlags, type WavefrontFeatureFlagResolution } from './feat
 import type { WavefrontDenoiserName } from '../film/denoise/denoiser.ts';
 import type { WavefrontAdaptiveSettings, WavefrontDenoiseOptions, WavefrontDenoiseSettings, WavefrontPresentationOutput, WavefrontProgressListener } from './output-types.ts';
 
-/** Most samples per pixel one renderFrame call takes, and the adaptive prediction's ceiling. */
-export const maxSamplesPerFrame = 65536;
+import { maxSamplesPerFrame } from '../film/adaptive/settings.ts';
+
+export { maxSamplesPerFrame } from '../film/adaptive/settings.ts';
 /** Default waves (frame passes) per command buffer. */
 export const defaultFramePassesPerSubmission = 16;
 export const maxFramePassesPerSubmissionLimit = 256;

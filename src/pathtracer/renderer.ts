@@ -14,7 +14,7 @@ import { allShaderFeatures } from '../shaders/features.ts';
 import { createKernelBindGroups, type PathTracerResourceMap } from './bind-groups.ts';
 import { checkBufferLimits, planBuffers, waveBufferBytes, type PlannedBuffer, type PlannedBufferName } from './buffer-plan.ts';
 import { normalizeWavefrontCamera } from './camera.ts';
-import { resolveCanvasTarget } from './canvas-target.ts';
+import { resolveCanvasTarget } from '../film/display/canvas-target.ts';
 import { createWavefrontPathTracingComputeConfig, type WavefrontPathTracingComputeConfig } from './config.ts';
 import { instanceMaterial } from './scene/flatten-primitives.ts';
 import { AdaptiveScheduler, createAdaptivePipelines } from '../film/adaptive/scheduler.ts';

@@ -3,14 +3,21 @@ import { filmAovPixelLayout, filmMomentsLayout, filmPixelLayout } from '../../gp
 import { fieldOf, type StructLayout } from '../../gpu-layout/struct-layout.ts';
 import { luminance } from '../../lighting/emissive-lights.ts';
 import type { WavefrontAovName } from '../aovs.ts';
-import { readGpuBuffer } from '../../pathtracer/gpu-buffers.ts';
-import type { WavefrontRadianceImage } from '../../pathtracer/types.ts';
+import { readGpuBuffer } from '../../gpu/read-buffer.ts';
 
 /**
  * Reads of the film. Its records (FilmPixel, FilmAovPixel, FilmMoments in gpu-layout/records.ts)
  * hold sums over each pixel's samples; readers divide by the sample count. The id film holds
  * 1 + the instance index of the pixel's first sample that reached a non-specular surface.
  */
+
+/** Linear radiance read from the film: RGBA float32, row-major, top row first. */
+export interface WavefrontRadianceImage {
+  width: number;
+  height: number;
+  /** RGBA, linear mean radiance, row-major, top row first. */
+  data: Float32Array;
+}
 
 /** Where a record's fields start in a float32 view of an array of it, and the record's stride. */
 export interface FloatFields<Name extends string> {

@@ -5,9 +5,8 @@ import { BufferUsage, MapMode } from '../../gpu/webgpu-constants.ts';
 import { createProgramBindGroups, type PathTracerResourceMap } from '../../pathtracer/bind-groups.ts';
 import { pathTracerBindings } from '../../gpu-layout/bindings.ts';
 import { computePipeline, type KernelPipeline } from '../../pathtracer/pipelines.ts';
-import type { DispatchTally } from '../../pathtracer/dispatch-tally.ts';
-import { maxSamplesPerFrame } from '../../pathtracer/output-options.ts';
-import type { WavefrontAdaptiveSettings } from './settings.ts';
+import type { DispatchCounter } from '../dispatch-counter.ts';
+import { maxSamplesPerFrame, type WavefrontAdaptiveSettings } from './settings.ts';
 import type { ShaderFeatures } from '../../shaders/features.ts';
 import { rendererWavefrontComputeWorkgroupSize } from '../../gpu-layout/constants.ts';
 
@@ -83,7 +82,7 @@ export class AdaptiveScheduler {
   }
 
   /** Encodes the convergence test and a copy of the list header into a mappable buffer (returned). */
-  encodeConvergence(encoder: GPUCommandEncoder, tally: DispatchTally | null): GPUBuffer {
+  encodeConvergence(encoder: GPUCommandEncoder, tally: DispatchCounter | null): GPUBuffer {
     const list = this.resources.adaptivePixels as GPUBuffer;
     encoder.clearBuffer(list, 0, adaptiveListSlots.listStart * 4);
     const workgroups = Math.ceil(this.pixels / rendererWavefrontComputeWorkgroupSize);

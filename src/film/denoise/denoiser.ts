@@ -8,15 +8,14 @@
  * 'atrous' (the edge-avoiding à-trous preview, atrous-denoiser.ts).
  */
 import type { ShaderFeatures } from '../../shaders/features.ts';
+import type { DispatchCounter } from '../dispatch-counter.ts';
 import type { WavefrontDenoiseSettings } from './settings.ts';
 
 /** The denoisers the renderer ships. */
 export type WavefrontDenoiserName = 'oidn' | 'atrous';
 
 /** Counts the compute dispatches a denoiser encodes (the renderer's `gpuParallelism` statistics). */
-export interface DenoiserDispatchTally {
-  direct(workgroups: number, invocationsPerWorkgroup: number): void;
-}
+export type DenoiserDispatchTally = DispatchCounter;
 
 /** What a denoiser is created on: the renderer's device, image size and buffers by binding name. */
 export interface WavefrontDenoiserTarget {

@@ -1,7 +1,7 @@
 import { GpuRendererError } from '../../errors/gpu-renderer-error.ts';
 import { displayBindings } from '../../shaders/display-bindings.ts';
 import { createProgramBindGroups, type PathTracerResourceMap } from '../../pathtracer/bind-groups.ts';
-import { preferredCanvasFormat, type CanvasLike } from '../../pathtracer/canvas-target.ts';
+import { preferredCanvasFormat, type CanvasLike } from './canvas-target.ts';
 import { createPresentPipeline, type KernelPipeline } from '../../pathtracer/pipelines.ts';
 
 const displayBindingOf = (name: string): number => displayBindings[name as keyof typeof displayBindings].binding;

@@ -1,5 +1,7 @@
-import { GpuRendererError } from '../errors/gpu-renderer-error.ts';
-import type { CanvasTarget } from './types.ts';
+import { GpuRendererError } from '../../errors/gpu-renderer-error.ts';
+
+/** A canvas element, an OffscreenCanvas or a CSS selector of a canvas. */
+export type CanvasTarget = HTMLCanvasElement | OffscreenCanvas | string;
 
 export interface CanvasLike {
   width: number;
