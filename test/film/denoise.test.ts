@@ -8,7 +8,7 @@ import { denoiseAtrousReference } from '../../src/film/denoise/atrous-reference.
 import { displayPeakSignalToNoiseRatio } from '../../src/film/metrics/display.ts';
 import { defaultDenoiseValidationThresholds, validateWavefrontDenoise } from '../../src/film/denoise/validation.ts';
 import { createWavefrontPathTracingComputeRenderer } from '../../src/pathtracer/index.ts';
-import { defaultDenoiseSettings } from '../../src/pathtracer/output-options.ts';
+import { defaultDenoiseSettings } from '../../src/film/denoise/options.ts';
 import type { WavefrontPathTracingRenderer } from '../../src/pathtracer/types.ts';
 import { GpuRendererError } from '../../src/errors/gpu-renderer-error.ts';
 import { testDevice } from '../helpers/gpu.ts';

@@ -105,6 +105,7 @@ export class AtrousDenoisePass implements WavefrontDenoiser {
 /** The à-trous entry of the denoiser registry: runs on every WebGPU device. */
 export const atrousDenoiser: WavefrontDenoiserEntry = {
   name: 'atrous',
+  optionNames: ['iterations', 'sigmaLuminance', 'sigmaNormal', 'sigmaDepth'],
   runsOn: () => true,
   async prepare(device, settings, _customWeights, features) {
     const pipelines = await createDenoisePipelines(device, features);

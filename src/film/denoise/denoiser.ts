@@ -9,7 +9,7 @@
  */
 import type { ShaderFeatures } from '../../shaders/features.ts';
 import type { DispatchCounter } from '../dispatch-counter.ts';
-import type { WavefrontDenoiseSettings } from './settings.ts';
+import type { WavefrontDenoiseOptions, WavefrontDenoiseSettings } from './settings.ts';
 
 /** The denoisers the renderer ships. */
 export type WavefrontDenoiserName = 'oidn' | 'atrous';
@@ -48,6 +48,8 @@ export interface WavefrontDenoiserFactory {
 /** What the renderer knows of a denoiser before it runs: a row of the registry (registry.ts). */
 export interface WavefrontDenoiserEntry {
   readonly name: WavefrontDenoiserName;
+  /** The `denoise` options only this denoiser reads (giving one under 'auto' chooses it). */
+  readonly optionNames: readonly (keyof WavefrontDenoiseOptions)[];
   /** Whether this device's limits run it ('auto' picks the first registry entry that does). */
   runsOn(device: GPUDevice): boolean;
   /**
