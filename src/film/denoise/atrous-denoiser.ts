@@ -106,6 +106,8 @@ export class AtrousDenoisePass implements WavefrontDenoiser {
 export const atrousDenoiser: WavefrontDenoiserEntry = {
   name: 'atrous',
   optionNames: ['iterations', 'sigmaLuminance', 'sigmaNormal', 'sigmaDepth'],
+  // The guides and the noise estimate (FilmAovPixel.reflectedLuminanceSquared) are AOVs.
+  reads: { aovs: true, moments: false },
   runsOn: () => true,
   async prepare(device, settings, _customWeights, features) {
     const pipelines = await createDenoisePipelines(device, features);

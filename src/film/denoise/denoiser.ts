@@ -50,6 +50,11 @@ export interface WavefrontDenoiserEntry {
   readonly name: WavefrontDenoiserName;
   /** The `denoise` options only this denoiser reads (giving one under 'auto' chooses it). */
   readonly optionNames: readonly (keyof WavefrontDenoiseOptions)[];
+  /**
+   * The film records it reads besides FilmPixel (FilmAovPixel: aovs, FilmMoments: moments); the
+   * accumulation writes only what some reader needs.
+   */
+  readonly reads: { readonly aovs: boolean; readonly moments: boolean };
   /** Whether this device's limits run it ('auto' picks the first registry entry that does). */
   runsOn(device: GPUDevice): boolean;
   /**

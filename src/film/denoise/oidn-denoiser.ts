@@ -71,6 +71,7 @@ export function oidnRunsOn(device: GPUDevice): boolean {
 export const oidnDenoiser: WavefrontDenoiserEntry = {
   name: 'oidn',
   optionNames: ['auxiliary', 'precision', 'emission', 'maxMemoryMB', 'weights'],
+  reads: { aovs: true, moments: false },
   runsOn: oidnRunsOn,
   async prepare(device, settings, customWeights) {
     const model = customWeights ? oidnModelFromBytes(customWeights) : await loadOidnModel(settings.weights as OidnBuiltinWeights);

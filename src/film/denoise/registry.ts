@@ -13,6 +13,12 @@ import type { WavefrontDenoiseSettings } from './settings.ts';
 /** Every denoiser, best first: 'auto' takes the first one the device runs. */
 export const wavefrontDenoisers: Readonly<Record<WavefrontDenoiserName, WavefrontDenoiserEntry>> = { oidn: oidnDenoiser, atrous: atrousDenoiser };
 
+/** The film records a denoiser reads ('auto', not yet resolved: whatever any of them reads). */
+export function denoiserFilmReads(denoiser: WavefrontDenoiseSettings['denoiser']): { aovs: boolean; moments: boolean } {
+  const entries = denoiser === 'auto' ? Object.values(wavefrontDenoisers) : [wavefrontDenoisers[denoiser]];
+  return { aovs: entries.some((e) => e.reads.aovs), moments: entries.some((e) => e.reads.moments) };
+}
+
 /** Resolves `denoiser: 'auto'` in place to the best denoiser the device runs; refuses a named one it cannot. */
 export function resolveWavefrontDenoiser(output: { denoise: WavefrontDenoiseSettings | null }, device: GPUDevice): void {
   const requested = output.denoise;
