@@ -8,7 +8,7 @@ import { fileURLToPath } from 'node:url';
 import { pathTracerBindings, type BindingSpec } from '../src/gpu-layout/bindings.ts';
 import { displayBindings } from '../src/shaders/display-bindings.ts';
 import { bvhBuildBindings } from '../src/accel/gpu-build/bindings.ts';
-import { oidnBindings } from '../src/post/denoise/oidn/bindings.ts';
+import { oidnBindings } from '../src/film/denoise/oidn/bindings.ts';
 import { programSpecs } from '../src/shaders/programs.ts';
 import { reflectProgram } from './shader-build/reflect.ts';
 import { compactWgsl } from './shader-build/compact-wgsl.ts';

@@ -6,7 +6,7 @@ export * from './scene/index.ts';
 export * from './accel/index.ts';
 export * from './lighting/index.ts';
 export * from './pathtracer/index.ts';
-export * from './post/index.ts';
+export * from './film/index.ts';
 export * from './runtime/index.ts';
 export * from './planning/index.ts';
 export * from './transport/index.ts';

@@ -45,20 +45,20 @@ export const pathTracerBindings = {
   // Group 3: transport state, per dispatch.
   paths: { group: G.transport, binding: 0, kind: 'storage', access: 'read_write', type: 'array<PathRecord>', doc: 'every path of the wave: state, next ray and its hit, pending shadow ray, sample' },
   queues: { group: G.transport, binding: 1, kind: 'storage', access: 'read_write', type: 'array<atomic<u32>>', doc: 'statistics, per-bounce queue lengths, then the ray and shadow queues (path slots)' },
-  film: { group: G.transport, binding: 7, kind: 'storage', access: 'read_write', type: 'array<vec4f>', doc: 'full-frame accumulation: radiance sum, sample count' },
-  filmAovs: { group: G.transport, binding: 11, kind: 'storage', access: 'read_write', type: 'array<vec4f>', doc: 'AOV sums per pixel: (albedo, depth), (normal, hits), (emission, squared luminance of the radiance without it)' },
+  film: { group: G.transport, binding: 7, kind: 'storage', access: 'read_write', type: 'array<FilmPixel>', doc: 'full-frame accumulation: radiance sum, sample count' },
+  filmAovs: { group: G.transport, binding: 11, kind: 'storage', access: 'read_write', type: 'array<FilmAovPixel>', doc: 'AOV sums per pixel' },
   wave: { group: G.transport, binding: 9, kind: 'uniform', dynamic: true, type: 'WaveUniforms', doc: 'per-wave constants' },
   bounce: { group: G.transport, binding: 10, kind: 'uniform', dynamic: true, type: 'BounceUniforms', doc: 'per-bounce constants' },
-  // Output (issue 9): film moments and ids, adaptive sampling, denoising. Minimal 16-byte buffers
-  // stand in where a feature is off.
-  filmMoments: { group: G.transport, binding: 16, kind: 'storage', access: 'read_write', type: 'array<vec4f>', doc: 'per pixel: (sum of even-indexed samples, their count), (sum of squared radiance, sum of squared luminance)' },
+  // Output (issue 9): film moments and ids, adaptive sampling, denoising. A buffer of one record
+  // stands in where a feature is off.
+  filmMoments: { group: G.transport, binding: 16, kind: 'storage', access: 'read_write', type: 'array<FilmMoments>', doc: 'moment sums per pixel' },
   filmIds: { group: G.transport, binding: 17, kind: 'storage', access: 'read_write', type: 'array<u32>', doc: 'per pixel: 1 + instance index of the first sample that reached a non-specular hit (0: none)' },
   adaptive: { group: G.transport, binding: 18, kind: 'uniform', type: 'AdaptiveUniforms', doc: 'adaptive-sampling convergence constants' },
   adaptiveError: { group: G.transport, binding: 19, kind: 'storage', access: 'read_write', type: 'array<f32>', doc: 'per-pixel error estimate of the last convergence test' },
   adaptivePixels: { group: G.transport, binding: 20, kind: 'storage', access: 'read_write', type: 'array<atomic<u32>>', doc: 'counts (ADAPTIVE_* slots), then the indices of the pixels still sampling' },
   denoise: { group: G.transport, binding: 21, kind: 'uniform', type: 'DenoiseUniforms', doc: 'constants of one denoiser pass' },
   denoiseColor: { group: G.transport, binding: 22, kind: 'storage', access: 'read_write', type: 'array<vec4f>', doc: 'two halves: demodulated radiance and its luminance variance' },
-  denoiseGuide: { group: G.transport, binding: 23, kind: 'storage', access: 'read_write', type: 'array<vec4f>', doc: 'per pixel: (albedo, depth), (normal, coverage), (emission, 0)' },
+  denoiseGuide: { group: G.transport, binding: 23, kind: 'storage', access: 'read_write', type: 'array<DenoiseGuide>', doc: 'a-trous guides per pixel' },
   denoised: { group: G.transport, binding: 24, kind: 'storage', access: 'read_write', type: 'array<vec4f>', doc: 'denoised radiance (rgb, 1)' },
   denoiseEnergy: { group: G.transport, binding: 25, kind: 'storage', access: 'read_write', type: 'array<vec4f>', doc: 'a-trous energy: [0] the per-channel scale, then per 8x8 workgroup the raw and the filtered reflected radiance sums' },
 } as const satisfies Record<string, BindingSpec>;

@@ -84,7 +84,7 @@ export async function acquireGpuDevice(options: AcquireGpuDeviceOptions = {}): P
   if (!gpu) throw new GpuRendererError('WEBGPU_UNAVAILABLE', 'WebGPU is not available in this environment (no navigator.gpu and no Dawn).');
   const adapter = await gpu.requestAdapter(options.powerPreference ? { powerPreference: options.powerPreference } : undefined);
   if (!adapter) throw new GpuRendererError('WEBGPU_UNAVAILABLE', 'No WebGPU adapter is available.');
-  // shader-f16: the OIDN denoiser's half-precision network (src/post/denoise/oidn).
+  // shader-f16: the OIDN denoiser's half-precision network (src/film/denoise/oidn).
   const wanted = options.optionalFeatures ?? ['timestamp-query', 'shader-f16'];
   const requiredFeatures = wanted.filter((f) => adapter.features.has(f));
   // Ask for the adapter's own storage limits: scenes are bounded by what the device really offers.

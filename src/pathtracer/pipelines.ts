@@ -1,7 +1,7 @@
 import { GpuRendererError } from '../errors/gpu-renderer-error.ts';
 import { bindingLayoutEntry, pathTracerBindings, type BindingSpec } from '../gpu-layout/bindings.ts';
 import { ShaderStage } from '../gpu/webgpu-constants.ts';
-import { oidnBindings } from '../post/denoise/oidn/bindings.ts';
+import { oidnBindings } from '../film/denoise/oidn/bindings.ts';
 import { displayBindings } from '../shaders/display-bindings.ts';
 import { bvhBuildBindings } from '../accel/gpu-build/bindings.ts';
 import type { ShaderFeatures } from '../shaders/features.ts';

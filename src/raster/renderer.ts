@@ -17,7 +17,7 @@ import { sunSolidAngle } from '../lighting/sun-light.ts';
 import { readTexturePixels } from '../runtime/read-pixels.ts';
 import { createCanvasTarget, createOffscreenTarget, resolveCanvas, type RenderTarget } from '../runtime/render-target.ts';
 import type { GpuRendererFormat } from '../runtime/renderer-types.ts';
-import { toneMappingModeIds } from '../post/tone-mapping.ts';
+import { toneMappingModeIds } from '../film/tone-mapping.ts';
 import { cameraViewProjection, lightViewProjection, validateRasterCamera, type RasterCamera } from './camera-matrices.ts';
 import { computeBrdfLut, createConstantEnvironment, createMapEnvironment, type RasterEnvironment } from './gpu/environment.ts';
 import { uploadMeshStreams, type GpuMeshStreams } from './gpu/geometry.ts';

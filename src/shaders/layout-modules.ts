@@ -7,7 +7,7 @@
  * - `package::layout::bindings`: the path tracer's binding declarations (gpu-layout/bindings.ts);
  * - `package::layout::display_bindings`: the display resolve's bindings;
  * - `package::layout::bvh_build_bindings`: the GPU BVH builder's bindings (accel/gpu-build/bindings.ts);
- * - `package::layout::oidn_bindings`: the OIDN network's bindings (post/denoise/oidn/bindings.ts);
+ * - `package::layout::oidn_bindings`: the OIDN network's bindings (film/denoise/oidn/bindings.ts);
  * - `package::layout::heaps`: `load_<record>(offset)` readers of records stored in vec4 heaps;
  * - `package::layout::features`: the `override` specialisation constants (shaders/features.ts).
  */
@@ -15,7 +15,7 @@ import { bindingDeclaration, pathTracerBindings, type BindingSpec } from '../gpu
 import { gpuConstants } from '../gpu-layout/constants.ts';
 import { heapRecordLayouts, wavefrontRecordLayouts } from '../gpu-layout/records.ts';
 import { structLayoutToWgsl, type StructLayout } from '../gpu-layout/struct-layout.ts';
-import { oidnBindings } from '../post/denoise/oidn/bindings.ts';
+import { oidnBindings } from '../film/denoise/oidn/bindings.ts';
 import { displayBindings } from './display-bindings.ts';
 import { bvhBuildBindings } from '../accel/gpu-build/bindings.ts';
 import { shaderFeatures } from './features.ts';
@@ -108,7 +108,7 @@ export function layoutModules(): WeslSources {
     'layout/bindings.wesl': bindingsModule(pathTracerBindings),
     'layout/display_bindings.wesl': bindingsModule(displayBindings),
     'layout/bvh_build_bindings.wesl': bindingsModule(bvhBuildBindings),
-    'layout/oidn_bindings.wesl': `import package::post::denoise::oidn::precision::Tensor4;\n${bindingsModule(oidnBindings)}`,
+    'layout/oidn_bindings.wesl': `import package::film::denoise::oidn::precision::Tensor4;\n${bindingsModule(oidnBindings)}`,
     'layout/heaps.wesl': heapsModule(),
     'layout/features.wesl': featuresModule(),
   };

@@ -7,11 +7,11 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { createWavefrontPathTracingComputeRenderer } from '../../src/pathtracer/index.ts';
 import { transportExperimentNames } from '../../src/pathtracer/feature-flags.ts';
-import { encodeRadianceToRgba8 } from '../../src/post/tone-mapping.ts';
+import { encodeRadianceToRgba8 } from '../../src/film/tone-mapping.ts';
 import { GpuRendererError } from '../../src/errors/gpu-renderer-error.ts';
 import { pathTracerBindings } from '../../src/gpu-layout/bindings.ts';
 import { LUMINANCE_FRACTION_BITS, queueBufferWords, queueCounterSlots } from '../../src/gpu-layout/constants.ts';
-import { frameUniformsLayout, pathRecordLayout, waveUniformsLayout } from '../../src/gpu-layout/records.ts';
+import { filmAovPixelLayout, filmMomentsLayout, filmPixelLayout, frameUniformsLayout, pathRecordLayout, waveUniformsLayout } from '../../src/gpu-layout/records.ts';
 import { allocateStructArray, writeStruct } from '../../src/gpu-layout/struct-layout.ts';
 import { BufferUsage } from '../../src/gpu/webgpu-constants.ts';
 import { generatedPrograms } from '../../src/shaders/programs.generated.ts';
@@ -212,10 +212,10 @@ test('invalid contributions are dropped and counted, and each sample that lost o
   writeStruct(waveUniformsLayout, new DataView(wave), 0, { firstPath: 0, firstSample: 0, pathCount: slots, list: 0 });
   const frame = new ArrayBuffer(frameUniformsLayout.size);
   writeStruct(frameUniformsLayout, new DataView(frame), 0, { imageSize: [slots, 1] });
-  const film = uploadBuffer(device, new Float32Array(slots * 4));
+  const film = uploadBuffer(device, new Float32Array((slots * filmPixelLayout.size) / 4));
   const resources: Record<string, GPUBuffer> = {
     paths, queues, film, frame: uploadBuffer(device, frame, BufferUsage.UNIFORM),
-    filmAovs: uploadBuffer(device, new Float32Array(slots * 12)), filmMoments: uploadBuffer(device, new Float32Array(slots * 8)),
+    filmAovs: uploadBuffer(device, new Float32Array((slots * filmAovPixelLayout.size) / 4)), filmMoments: uploadBuffer(device, new Float32Array((slots * filmMomentsLayout.size) / 4)),
     filmIds: uploadBuffer(device, new Uint32Array(slots)), adaptivePixels: uploadBuffer(device, new Uint32Array(8)),
     wave: uploadBuffer(device, wave, BufferUsage.UNIFORM),
   };

@@ -3,7 +3,7 @@
 // a E cos / pi, and the shadow map darkens exactly the floor under an occluder.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { linearToSrgb, srgbToLinear } from '../../src/post/tone-mapping.ts';
+import { linearToSrgb, srgbToLinear } from '../../src/film/tone-mapping.ts';
 import { createRasterRenderer } from '../../src/raster/index.ts';
 import { testDevice } from '../helpers/gpu.ts';
 import { quad, uvSphere } from './scenes.ts';

@@ -6,7 +6,7 @@ import assert from 'node:assert/strict';
 import { pathTracerBindings } from '../../src/gpu-layout/bindings.ts';
 import { displayBindings } from '../../src/shaders/display-bindings.ts';
 import { bvhBuildBindings } from '../../src/accel/gpu-build/bindings.ts';
-import { oidnBindings } from '../../src/post/denoise/oidn/bindings.ts';
+import { oidnBindings } from '../../src/film/denoise/oidn/bindings.ts';
 import { generatedPrograms } from '../../src/shaders/programs.generated.ts';
 import { programSpecs } from '../../src/shaders/programs.ts';
 import { shaderFeatures } from '../../src/shaders/features.ts';

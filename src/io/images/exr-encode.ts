@@ -5,7 +5,7 @@
  */
 import { zlibSync } from 'fflate';
 import { GpuRendererError } from '../../errors/gpu-renderer-error.ts';
-import { wavefrontAovChannels, wavefrontIntegerAovs, isWavefrontAovName, type WavefrontAovName } from '../../post/aovs.ts';
+import { wavefrontAovChannels, wavefrontIntegerAovs, isWavefrontAovName, type WavefrontAovName } from '../../film/aovs.ts';
 import { ByteWriter } from './byte-writer.ts';
 import { float32ToHalfBits } from '../../math/half-float.ts';
 import { requireLinearRgbaImage, type LinearRgbaImage } from './linear-image.ts';

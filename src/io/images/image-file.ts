@@ -7,7 +7,7 @@
 import { GpuRendererError } from '../../errors/gpu-renderer-error.ts';
 import { writeFileBytes } from '../platform.ts';
 import { encodePng } from './png.ts';
-import { encodeRadianceToRgba8, type EncodeRadianceOptions } from '../../post/tone-mapping.ts';
+import { encodeRadianceToRgba8, type EncodeRadianceOptions } from '../../film/tone-mapping.ts';
 import { encodeExr, type EncodeExrOptions } from './exr-encode.ts';
 import { encodeHdr, type EncodeHdrOptions } from './hdr-encode.ts';
 import { requireLinearRgbaImage, type LinearRgbaImage } from './linear-image.ts';

@@ -5,7 +5,7 @@ import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { decode } from 'fast-png';
 import { encodeImageFile, imageFileFormatFromPath, writeImageFile } from '../../../src/io/images/image-file.ts';
-import { encodeRadianceToRgba8 } from '../../../src/post/tone-mapping.ts';
+import { encodeRadianceToRgba8 } from '../../../src/film/tone-mapping.ts';
 import { GpuRendererError } from '../../../src/errors/gpu-renderer-error.ts';
 import { readExrWithThree, readHdrWithThree } from './independent-readers.ts';
 
