@@ -1,0 +1,47 @@
+// The layers of src/, lowest first. A module may import its own folder and any folder in a lower
+// layer, never one in a higher layer: the graph of folders stays acyclic, so each folder can be
+// read, tested and reused with only what is below it. Folders in one layer are peers (they may
+// import each other); keep such groups rare. A new folder under src/ must be placed here (the
+// layering test fails until it is). Files directly in src/ are the package's entry points and may
+// import any layer.
+export const layers: readonly (readonly string[])[] = [
+  // Typed errors and input validation: everything throws them.
+  ['errors'],
+  // The WebGPU device and its constants.
+  ['gpu'],
+  // Byte layouts shared by TypeScript and WGSL: records, bindings, constants.
+  ['gpu-layout'],
+  // Generated WGSL modules and their composition (the program registry).
+  ['shaders'],
+  // Light transport between surfaces: media, Fresnel interfaces, spectral samples (CPU references).
+  ['transport'],
+  // The scene description: types, validation, normalisation, the scene JSON format.
+  ['scene'],
+  // Lights and environments (sampling tables, skies, portals).
+  ['lighting'],
+  // Materials: BSDFs, textures, their CPU references.
+  ['materials'],
+  // Skeletal animation: sampling, poses, skinning, camera rigs, timelines.
+  ['animation'],
+  // Acceleration structures (CPU and GPU BVH builds).
+  ['accel'],
+  // The film: accumulation, AOVs, adaptive sampling, denoisers, display, tone mapping. `post` is
+  // its former name, kept until the film folder has absorbed it.
+  ['film', 'post'],
+  // The wavefront path tracer.
+  ['pathtracer'],
+  // Files, URLs and the platform: decoders, encoders, asset loaders that build scene descriptions.
+  ['io'],
+  // Frame planning and worker manifests.
+  ['planning'],
+  // WebXR session binding.
+  ['xr'],
+  // The general frame-loop runtime.
+  ['runtime'],
+  // The raster renderer and the animated scenes on it.
+  ['raster'],
+  // Image sequences of a glTF asset (animation frames, turntables, variants).
+  ['sequence'],
+  // Applications of the package: the command line and the render farm (the farm runs CLI jobs).
+  ['cli', 'farm'],
+];
