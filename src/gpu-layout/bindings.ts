@@ -49,7 +49,7 @@ export const pathTracerBindings = {
   filmAovs: { group: G.transport, binding: 11, kind: 'storage', access: 'read_write', type: 'array<vec4f>', doc: 'AOV sums per pixel: (albedo, depth), (normal, hits), (emission, squared luminance of the radiance without it)' },
   wave: { group: G.transport, binding: 9, kind: 'uniform', dynamic: true, type: 'WaveUniforms', doc: 'per-wave constants' },
   bounce: { group: G.transport, binding: 10, kind: 'uniform', dynamic: true, type: 'BounceUniforms', doc: 'per-bounce constants' },
-  // Output (issue 9): film moments and ids, adaptive sampling, denoising. Minimal 16-byte buffers
+  // Output: film moments and ids, adaptive sampling, denoising. Minimal 16-byte buffers
   // stand in where a feature is off.
   filmMoments: { group: G.transport, binding: 16, kind: 'storage', access: 'read_write', type: 'array<vec4f>', doc: 'per pixel: (sum of even-indexed samples, their count), (sum of squared radiance, sum of squared luminance)' },
   filmIds: { group: G.transport, binding: 17, kind: 'storage', access: 'read_write', type: 'array<u32>', doc: 'per pixel: 1 + instance index of the first sample that reached a non-specular hit (0: none)' },
