@@ -206,7 +206,7 @@ export const SAMPLER_MIP_LINEAR = 1 << 7;
 export const LIGHT_KIND_TRIANGLE = 0;
 export const LIGHT_FLAG_DOUBLE_SIDED = 1;
 export const LIGHT_FLAG_TEXTURED = 2;
-// Lighting (issue 8): kinds inside the lights heap's records (see src/lighting/gpu-lighting.ts).
+// Lighting: kinds inside the lights heap's records (see src/lighting/gpu-lighting.ts).
 /** AreaLight.kind. */
 export const AREA_LIGHT_RECTANGLE = 0;
 export const AREA_LIGHT_DISK = 1;
@@ -237,8 +237,8 @@ export const SURFACE_FLAG_ESCAPED = 8;
 /** Fractional bits of the 64-bit fixed-point luminance tallies of the frame diagnostics. */
 export const LUMINANCE_FRACTION_BITS = 16;
 /**
- * Samples with a channel above this count as `legacyClampEquivalentSamples`: what the mirrored
- * package's legacy 4.0 clamp would have altered. Counted only; nothing is clamped.
+ * Samples with a channel above this count as `legacyClampEquivalentSamples`: what the 0.2
+ * API's legacy 4.0 clamp would have altered (a figure its hosts track). Counted only; nothing is clamped.
  */
 export const LEGACY_CLAMP_EQUIVALENT_RADIANCE = 4;
 

@@ -22,7 +22,6 @@
  * `camera` wins; otherwise the first reference's camera is used (its chosen or default camera).
  */
 import { GpuRendererError, isGpuRendererError } from '../../errors/gpu-renderer-error.ts';
-import { describe } from '../../errors/validate.ts';
 import { validateLightingOptions } from '../../lighting/lighting-options.ts';
 import { normalizeWavefrontCamera } from '../../pathtracer/camera.ts';
 import { affineFromColumnMajor } from '../../scene/instance.ts';
