@@ -218,6 +218,7 @@ test('public API: the built ESM and CommonJS entries export the same names as th
   const tsc = join(root, 'node_modules/typescript-7/bin/tsc');
   spawnSync(process.execPath, [tsc, '-p', 'tsconfig.cjs.json', '--outDir', out, '--declaration', 'false', '--sourceMap', 'false'], { cwd: root, stdio: 'ignore' });
   assert.ok(existsSync(join(out, 'index.js')), 'tsc -p tsconfig.cjs.json emitted index.js');
+  assert.ok(!existsSync(join(out, 'internal.js')), 'the internal entry is not part of the package');
   writeFileSync(join(out, 'package.json'), JSON.stringify({ type: 'commonjs' }));
   const cjs = createRequire(join(out, 'index.js'))(join(out, 'index.js')) as Record<string, unknown>;
   assert.deepEqual(sorted(Object.keys(cjs)), sorted(publicValues), 'dist/cjs');
