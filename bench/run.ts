@@ -218,7 +218,7 @@ if (options.output) {
   results.output = await runOutputBenchmark();
 }
 
-// GPU figures (bench/gpu.ts: the path tracer's defaults on the 1080p cases; scaled down on
+// GPU figures (bench/gpu.ts: the path tracer's defaults on the 1080p cases; scaled down on
 // a CPU adapter): off with --no-gpu / BENCH_GPU=0 or another --x-only.
 if (options.gpu) {
   const { runGpuBenchmark, printGpuBenchmark } = await import('./gpu.ts');
