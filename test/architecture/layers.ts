@@ -1,14 +1,18 @@
-// The layers of src/, lowest first. A module may import its own folder and any folder in a lower
-// layer, never one in a higher layer: the graph of folders stays acyclic, so each folder can be
-// read, tested and reused with only what is below it. Folders in one layer are peers (they may
-// import each other); keep such groups rare. A new folder under src/ must be placed here (the
-// layering test fails until it is). Files directly in src/ are the package's entry points and may
-// import any layer.
+// The layers of src/, lowest first. A module may import its own unit and any unit in a lower
+// layer, never one in a higher layer: the graph stays acyclic, so each unit can be read, tested
+// and reused with only what is below it. A unit is a folder of src/ (`scene`), or a subfolder or
+// file inside one (`io/gltf`) where the folder's parts sit at different heights; a module belongs
+// to the longest unit that contains it. Units in one layer are peers (they may import each other);
+// keep such groups rare. A new folder under src/ must be placed here (the layering test fails
+// until it is). Files directly in src/ are the package's entry points and may import any layer.
 export const layers: readonly (readonly string[])[] = [
   // Typed errors and input validation: everything throws them.
   ['errors'],
   // The WebGPU device and its constants.
   ['gpu'],
+  // Files, URLs and the platform: reading a path or URL within the resource policy's bounds, data
+  // URIs, image headers, codecs. Everything that reads bytes goes through here.
+  ['io'],
   // Byte layouts shared by TypeScript and WGSL: records, bindings, constants.
   ['gpu-layout'],
   // Generated WGSL modules and their composition (the program registry).
@@ -30,8 +34,8 @@ export const layers: readonly (readonly string[])[] = [
   ['film', 'post'],
   // The wavefront path tracer.
   ['pathtracer'],
-  // Files, URLs and the platform: decoders, encoders, asset loaders that build scene descriptions.
-  ['io'],
+  // Asset loaders: glTF and scene files into scene descriptions (on the platform layer of io).
+  ['io/gltf', 'io/scene-file-loader.ts', 'io/index.ts'],
   // Frame planning and worker manifests.
   ['planning'],
   // WebXR session binding.
