@@ -1,5 +1,5 @@
 /**
- * Production-output measurements (issue 9), separate from the throughput comparison with a
+ * Production-output measurements (adaptive sampling, denoising), separate from the throughput comparison with a
  * baseline: run `BENCH_OUTPUT=1 npm run bench -- --no-baseline --no-bvh` (bench/run.ts calls
  * runOutputBenchmark) or `node bench/output.ts` on its own. Prints tables and writes
  * bench/results/output.json.

@@ -49,8 +49,8 @@ export const pathTracerBindings = {
   filmAovs: { group: G.transport, binding: 11, kind: 'storage', access: 'read_write', type: 'array<FilmAovPixel>', doc: 'AOV sums per pixel' },
   wave: { group: G.transport, binding: 9, kind: 'uniform', dynamic: true, type: 'WaveUniforms', doc: 'per-wave constants' },
   bounce: { group: G.transport, binding: 10, kind: 'uniform', dynamic: true, type: 'BounceUniforms', doc: 'per-bounce constants' },
-  // Output (issue 9): film moments and ids, adaptive sampling, denoising. A buffer of one record
-  // stands in where a feature is off.
+  // Output: film moments and ids, adaptive sampling, denoising. A buffer of one record stands in
+  // where a feature is off.
   filmMoments: { group: G.transport, binding: 16, kind: 'storage', access: 'read_write', type: 'array<FilmMoments>', doc: 'moment sums per pixel' },
   filmIds: { group: G.transport, binding: 17, kind: 'storage', access: 'read_write', type: 'array<u32>', doc: 'per pixel: 1 + instance index of the first sample that reached a non-specular hit (0: none)' },
   adaptive: { group: G.transport, binding: 18, kind: 'uniform', type: 'AdaptiveUniforms', doc: 'adaptive-sampling convergence constants' },

@@ -280,7 +280,7 @@ export const lightRecordLayout: StructLayout = defineStructLayout('LightRecord',
   ['reserved', 'u32'],
 ]);
 
-// Lighting (issue 8). Every emitter and sampling table lives in the `lights` vec4 heap (loaders
+// Lighting. Every emitter and sampling table lives in the `lights` vec4 heap (loaders
 // generated below); src/lighting/gpu-lighting.ts packs it, src/lighting/*.wesl read it.
 
 /**
@@ -733,7 +733,7 @@ function vertexBytesAllStreams(): number {
   return 4 * (VERTEX_POSITION_WORDS + VERTEX_NORMAL_WORDS + VERTEX_TANGENT_WORDS + VERTEX_COLOR_WORDS + 2 * VERTEX_UV_WORDS);
 }
 
-/** GPU record sizes in bytes (the mirrored package's "GPU record-size constants"). */
+/** GPU record sizes in bytes (public since the 0.2 API, so hosts can size buffers that hold these records). */
 export const rendererWavefrontRecordSizes = {
   pathState: pathStateLayout.size,
   shadowRay: shadowRayLayout.size,

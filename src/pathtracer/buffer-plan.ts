@@ -44,7 +44,7 @@ export interface BufferPlanInput {
   wavePaths: number;
   maxDepth: number;
   aovs: boolean;
-  /** Output features that size full-frame buffers (issue 9); all false keeps them minimal. */
+  /** Output features that size full-frame buffers; all false keeps them minimal. */
   output?: { moments: boolean; adaptive: boolean; denoise: boolean; atrous?: boolean };
   /** Frames whose statistics may be in flight at once (one timestamp pair each); default 1. */
   framesInFlight?: number;

@@ -1,5 +1,5 @@
 /**
- * Validation of the production-output options (issue 9): adaptive sampling, the denoiser,
+ * Validation of the production-output options: adaptive sampling, the denoiser,
  * presentation, submission bounds, feature flags and the per-frame budget. Every error names its field.
  */
 import { fail, requireFiniteNumber, requireInteger, requireNumberInRange } from '../errors/validate.ts';

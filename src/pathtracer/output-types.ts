@@ -1,6 +1,6 @@
 /**
- * Public types of the production-output surface (issue 9): adaptive sampling, the denoiser,
- * presentation, progress events and the mirrored frame diagnostics.
+ * Public types of the production-output surface: adaptive sampling, the denoiser,
+ * presentation, progress events and the frame diagnostics hosts of the 0.2 API read.
  */
 export type { WavefrontDenoiseOptions, WavefrontDenoiseSettings } from '../film/denoise/settings.ts';
 export type { WavefrontAdaptiveSettings } from '../film/adaptive/settings.ts';
@@ -56,7 +56,7 @@ export interface WavefrontAdaptiveFrameStats {
  * Where the frame's radiance came from, as mean luminance (Rec. 709) per pixel sample. Terminal
  * sources are emitter hits (camera and BSDF-sampled rays, MIS-weighted) and escaped paths (the
  * environment); next-event estimation is the rest. This renderer adds no ambient term, so the
- * ambient residual fields of the mirrored API are always 0.
+ * ambient residual fields (kept for hosts of the 0.2 API) are always 0.
  */
 export interface WavefrontTerminalRadiance {
   /** Every contribution: emitter + environment + directLight. */
@@ -78,7 +78,7 @@ export interface WavefrontRadianceDiagnostics {
   invalidSamples: number;
   /** Contributions dropped as NaN, Inf or negative. */
   invalidContributions: number;
-  /** Samples with a channel above 4: what the mirrored package's legacy 4.0 clamp would have altered (nothing is clamped). */
+  /** Samples with a channel above 4: what the 0.2 API's legacy 4.0 clamp would have altered (nothing is clamped). */
   legacyClampEquivalentSamples: number;
 }
 

@@ -130,7 +130,7 @@ export interface WavefrontFrameStats {
   samplesAccumulated: number;
   /** The call's samplesPerPixel: a ceiling when frameTimeBudgetMs or adaptive sampling ends the frame sooner. */
   samplesPerPixel: number;
-  /** Sample passes actually rendered (equal to samplesAdded; the mirrored API's name). */
+  /** Sample passes actually rendered (equal to samplesAdded; the 0.2 API's name, kept for its hosts). */
   renderedSamplesPerPixel: number;
   frameTimeBudgetMs: number | null;
   rays: WavefrontRayCounts;

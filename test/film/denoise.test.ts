@@ -1,6 +1,6 @@
 // The a-trous denoiser (edge-avoiding a-trous, SVGF's spatial filter) against its CPU reference on the
 // same inputs; it works on a copy (readRadiance stays raw); flat regions keep their mean within 1%;
-// PSNR against a converged render improves; and the mirrored denoise validation helper passes with
+// PSNR against a converged render improves; and the 0.2 API's denoise validation helper passes with
 // its documented thresholds.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
