@@ -28,7 +28,7 @@ import { affineFromColumnMajor } from '../../scene/instance.ts';
 import type { GltfSceneReference } from '../../scene/gltf-references.ts';
 import type { WavefrontMaterialInput, WavefrontPunctualLightInput, WavefrontSceneDescription } from '../../scene/types.ts';
 import { loadGltfScene, type GltfLoadOptions, type GltfScene } from './load-gltf-scene.ts';
-import { determinant3, IDENTITY, multiply, normalize, transformDirection, transformPoint } from '../../math/mat4.ts';
+import { IDENTITY, multiply, normalize, transformDirection, transformPoint } from '../../math/mat4.ts';
 import { budgetOf, derivePolicy, folderOf, isInsideFolder, locateSource, resolveReference, resolveResourcePolicy, type ResourcePolicy } from '../resource-policy.ts';
 
 function invalid(field: string, message: string): never {
