@@ -6,7 +6,8 @@ import { displayBindings } from '../shaders/display-bindings.ts';
 import { bvhBuildBindings } from '../accel/gpu-build/bindings.ts';
 import type { ShaderFeatures } from '../shaders/features.ts';
 import { generatedPrograms } from '../shaders/programs.generated.ts';
-import { programSpecs, type ProgramName } from '../shaders/programs.ts';
+import { programWgsl } from '../shaders/program-wgsl.ts';
+import { programSpecs, type ProgramGroupName, type ProgramName } from '../shaders/programs.ts';
 
 /** The compute kernels of one wavefront wave, with the program and entry point of each. */
 export const wavefrontKernels = {
@@ -35,12 +36,11 @@ export interface PathTracerPipelines {
   resolve: KernelPipeline;
 }
 
-const tables: Record<string, Record<string, BindingSpec>> = { pathTracer: pathTracerBindings, display: displayBindings, bvhBuild: bvhBuildBindings, oidn: oidnBindings };
-const programTable = Object.fromEntries(Object.entries(programSpecs).map(([name, spec]) => [name, spec.bindings])) as Record<ProgramName, string>;
+const tables: Record<ProgramGroupName, Record<string, BindingSpec>> = { pathTracer: pathTracerBindings, display: displayBindings, bvhBuild: bvhBuildBindings, oidn: oidnBindings };
 
 /** Explicit bind group layouts for exactly the bindings a program's linked WGSL declares. */
 export function programLayout(device: GPUDevice, program: ProgramName, visibility: number = ShaderStage.COMPUTE): ProgramLayout {
-  const table = tables[programTable[program]]!;
+  const table = tables[programSpecs[program].group];
   const names = generatedPrograms[program].bindings;
   const byGroup: string[][] = [];
   for (const name of names) {
@@ -65,8 +65,8 @@ export function programModule(device: GPUDevice, program: ProgramName): Promise<
   if (!perDevice) modules.set(device, (perDevice = new Map()));
   let module = perDevice.get(program);
   if (!module) {
-    const code = generatedPrograms[program].wgsl;
     module = (async () => {
+      const code = await programWgsl(program);
       const m = device.createShaderModule({ code, label: program });
       const info = await m.getCompilationInfo();
       const errors = info.messages.filter((e) => e.type === 'error');
