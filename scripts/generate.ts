@@ -7,7 +7,6 @@ import { existsSync, readFileSync, writeFileSync } from 'node:fs';
 import { fileURLToPath } from 'node:url';
 import { generatePrograms } from './shader-build/programs.ts';
 import { weslProjectSources } from './shader-build/wesl-project.ts';
-import { generateRasterPrograms } from './shader-build/raster-programs.ts';
 import { embedCodecs } from './codec-build/embed-codecs.ts';
 import { generateOidnWeightModules } from './oidn-weights.ts';
 
@@ -19,13 +18,6 @@ try {
   console.error(`generate: ${(error as Error).message}`);
   process.exit(1);
 }
-let rasterCount: number;
-try {
-  rasterCount = await generateRasterPrograms(sources);
-} catch (error) {
-  console.error(`generate: ${(error as Error).message}`);
-  process.exit(1);
-}
 const root = fileURLToPath(new URL('..', import.meta.url));
 const codecs = embedCodecs();
 for (const codec of codecs) {
@@ -33,4 +25,4 @@ for (const codec of codecs) {
   if (!existsSync(path) || readFileSync(path, 'utf8') !== codec.text) writeFileSync(path, codec.text);
 }
 const weights = generateOidnWeightModules();
-console.log(`generate: ${programCount} programs linked, ${rasterCount} raster programs, ${codecs.length} codec modules, ${weights.length} OIDN weights`);
+console.log(`generate: ${programCount} programs linked, ${codecs.length} codec modules, ${weights.length} OIDN weights`);

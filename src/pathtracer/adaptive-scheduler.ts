@@ -4,7 +4,7 @@ import { writeStruct } from '../gpu-layout/struct-layout.ts';
 import { BufferUsage, MapMode } from '../gpu/webgpu-constants.ts';
 import { createProgramBindGroups, type PathTracerResourceMap } from './bind-groups.ts';
 import { pathTracerBindings } from '../gpu-layout/bindings.ts';
-import { computePipeline, type KernelPipeline } from './pipelines.ts';
+import { computePipeline, type KernelPipeline } from '../shaders/program-pipelines.ts';
 import type { DispatchTally } from './dispatch-tally.ts';
 import { maxSamplesPerFrame } from './output-options.ts';
 import type { WavefrontAdaptiveSettings } from './output-types.ts';

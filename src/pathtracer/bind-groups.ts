@@ -1,6 +1,7 @@
 import { pathTracerBindings } from '../gpu-layout/bindings.ts';
 import { bounceUniformsLayout, waveUniformsLayout } from '../gpu-layout/records.ts';
-import type { KernelPipeline, ProgramLayout, WavefrontKernelName } from './pipelines.ts';
+import type { KernelPipeline, ProgramLayout } from '../shaders/program-pipelines.ts';
+import type { WavefrontKernelName } from './pipelines.ts';
 
 /** The GPU resource behind every binding name of the path tracer. */
 export type PathTracerResourceMap = Record<string, GPUBuffer | GPUTextureView>;

@@ -16,7 +16,7 @@ import { loadOidnModel, oidnModelFromBytes, type OidnBuiltinWeights } from '../p
 import type { ShaderFeatures } from '../shaders/features.ts';
 import { createProgramBindGroups, type PathTracerResourceMap } from './bind-groups.ts';
 import type { WavefrontDenoiseSettings } from './output-types.ts';
-import { computePipeline, type KernelPipeline } from './pipelines.ts';
+import { computePipeline, type KernelPipeline } from '../shaders/program-pipelines.ts';
 
 const bindingOf = (name: string): number => pathTracerBindings[name as keyof typeof pathTracerBindings].binding;
 

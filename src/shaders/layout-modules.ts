@@ -51,7 +51,7 @@ function importLines(used: { records: string[]; constants: string[] }): string {
 
 function bindingsModule(table: Record<string, BindingSpec>): string {
   const specs = Object.entries(table);
-  const imports = importLines(namesUsedBy(specs.map(([, s]) => s.type)));
+  const imports = importLines(namesUsedBy(specs.map(([, s]) => ('type' in s ? s.type : ''))));
   return `${imports}\n\n${specs.map(([name, spec]) => bindingDeclaration(name, spec)).join('\n')}\n`;
 }
 

@@ -1,6 +1,6 @@
 /**
- * Every GPU program the package ships: a root WESL module (path under src/, `::`-separated, as in
- * `import` statements) and the group it belongs to. `npm run generate`
+ * Every GPU program the package ships, the path tracer's and the raster renderer's: a root WESL
+ * module (path under src/, `::`-separated, as in `import` statements) and the group it belongs to. `npm run generate`
  * (scripts/shader-build/programs.ts) links each program with the WESL linker, reflects the
  * bindings and `override` constants that survive linking into programs.generated.ts, and writes
  * each group's WGSL to a module of its own (wgsl/<file>.generated.ts).
@@ -21,6 +21,8 @@ export const programGroups = {
   bvhBuild: { file: 'bvh-build', loading: 'lazy' },
   /** The OIDN denoiser's network. */
   oidn: { file: 'oidn', loading: 'lazy' },
+  /** The raster renderer (its renderer loads them when it is created). */
+  raster: { file: 'raster', loading: 'lazy' },
 } as const satisfies Record<string, { readonly file: string; readonly loading: 'eager' | 'lazy' }>;
 
 export type ProgramGroupName = keyof typeof programGroups;
@@ -32,6 +34,8 @@ export interface ProgramSpec {
   readonly group: ProgramGroupName;
   /** WESL `@if` conditions the program is linked with (e.g. `f16`). */
   readonly conditions?: Readonly<Record<string, boolean>>;
+  /** Where a group's table is split into sets (the raster's), the set the bindings come from. */
+  readonly set?: string;
 }
 
 export const programSpecs = {
@@ -62,6 +66,17 @@ export const programSpecs = {
   oidnInputF16: { module: 'package::post::denoise::oidn::input', group: 'oidn', conditions: { f16: true } },
   oidnOutput: { module: 'package::post::denoise::oidn::output', group: 'oidn' },
   oidnOutputF16: { module: 'package::post::denoise::oidn::output', group: 'oidn', conditions: { f16: true } },
+  // The raster renderer (src/raster/): forward shading and its passes, skinning, environment
+  // precomputation and the output resolve, each binding set sharing its bind group layouts.
+  rasterForward: { module: 'package::raster::shaders::forward', group: 'raster', set: 'draw' },
+  rasterShadow: { module: 'package::raster::shaders::shadow', group: 'raster', set: 'draw' },
+  rasterBackground: { module: 'package::raster::shaders::background', group: 'raster', set: 'draw' },
+  rasterSkin: { module: 'package::raster::shaders::skin', group: 'raster', set: 'skin' },
+  rasterIblDownsample: { module: 'package::raster::shaders::ibl_downsample', group: 'raster', set: 'ibl' },
+  rasterIblPrefilter: { module: 'package::raster::shaders::ibl_prefilter', group: 'raster', set: 'ibl' },
+  rasterIblIrradiance: { module: 'package::raster::shaders::ibl_irradiance', group: 'raster', set: 'ibl' },
+  rasterBrdfLut: { module: 'package::raster::shaders::brdf_lut', group: 'raster', set: 'ibl' },
+  rasterResolve: { module: 'package::raster::shaders::resolve', group: 'raster', set: 'resolve' },
 } as const satisfies Record<string, ProgramSpec>;
 
 export type ProgramName = keyof typeof programSpecs;

@@ -3,10 +3,7 @@
 // the binding table (reflection of the linked WGSL, not a hand-kept list).
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { pathTracerBindings } from '../../src/gpu-layout/bindings.ts';
-import { displayBindings } from '../../src/shaders/display-bindings.ts';
-import { bvhBuildBindings } from '../../src/accel/gpu-build/bindings.ts';
-import { oidnBindings } from '../../src/post/denoise/oidn/bindings.ts';
+import { bindingTables } from '../../src/shaders/binding-tables.ts';
 import { generatedPrograms } from '../../src/shaders/programs.generated.ts';
 import { programWgsl } from '../../src/shaders/program-wgsl.ts';
 import { programGroups, programSpecs, type ProgramName } from '../../src/shaders/programs.ts';
@@ -17,8 +14,7 @@ import { testDevice } from '../helpers/gpu.ts';
 test('every program binds within WebGPU default limits and only table bindings', () => {
   for (const [name, spec] of Object.entries(programSpecs)) {
     const program = generatedPrograms[name as keyof typeof generatedPrograms];
-    const tables: Record<string, Record<string, { kind: string; group: number }>> = { display: displayBindings, oidn: oidnBindings, pathTracer: pathTracerBindings, bvhBuild: bvhBuildBindings };
-    const table = tables[spec.group]!;
+    const table = bindingTables[spec.group];
     const storage = program.bindings.filter((b) => table[b]!.kind === 'storage').length;
     assert.ok(storage <= 8, `${name} binds ${storage} storage buffers`);
     assert.ok(Math.max(...program.bindings.map((b) => table[b]!.group)) < 4, `${name} uses more than 4 bind groups`);

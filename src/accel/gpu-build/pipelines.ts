@@ -1,9 +1,9 @@
 /**
  * Compute pipelines of the GPU BVH builder and refitter, compiled once per device, with explicit
- * layouts derived from the bindings each program declares (src/pathtracer/pipelines.ts).
+ * layouts derived from the bindings each program declares (src/shaders/program-pipelines.ts).
  */
 import { GpuRendererError } from '../../errors/gpu-renderer-error.ts';
-import { computePipeline, type KernelPipeline } from '../../pathtracer/pipelines.ts';
+import { computePipeline, type KernelPipeline } from '../../shaders/program-pipelines.ts';
 import { allShaderFeatures } from '../../shaders/features.ts';
 import type { ProgramName } from '../../shaders/programs.ts';
 

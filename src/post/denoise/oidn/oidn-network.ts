@@ -12,7 +12,7 @@ import { writeStruct } from '../../../gpu-layout/struct-layout.ts';
 import { BufferUsage } from '../../../gpu/webgpu-constants.ts';
 import { allShaderFeatures } from '../../../shaders/features.ts';
 import type { ProgramName } from '../../../shaders/programs.ts';
-import { computePipeline, type KernelPipeline } from '../../../pathtracer/pipelines.ts';
+import { computePipeline, type KernelPipeline } from '../../../shaders/program-pipelines.ts';
 import { oidnBindings, type OidnBindingName } from './bindings.ts';
 import { encodeValues, packConv, planTensors, planTiles, type OidnPrecision, type PackedConv, type TilePlan, type TensorPlan } from './packing.ts';
 import { autoexposureBinSize } from './transfer.ts';
