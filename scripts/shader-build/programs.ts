@@ -11,9 +11,9 @@
  */
 import { existsSync, mkdirSync, readFileSync, writeFileSync } from 'node:fs';
 import { fileURLToPath } from 'node:url';
-import { bindingTables } from '../../src/shaders/binding-tables.ts';
+import { bindingTables } from './binding-tables.ts';
 import { programGroups, programSpecs, type ProgramGroupName } from '../../src/shaders/programs.ts';
-import type { WeslSources } from '../../src/shaders/layout-modules.ts';
+import type { WeslSources } from './layout-modules.ts';
 import { reflectProgram } from './reflect.ts';
 import { compactWgsl } from './compact-wgsl.ts';
 import { linkProgram } from './wesl-project.ts';

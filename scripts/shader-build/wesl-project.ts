@@ -9,7 +9,7 @@ import { join, relative, sep } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { link, type LinkedWesl } from 'wesl/core';
 import { rasterLayoutModule, rasterLayoutModuleKey } from '../../src/raster/gpu/raster-wgsl-layout.ts';
-import { layoutModules, type WeslSources } from '../../src/shaders/layout-modules.ts';
+import { layoutModules, type WeslSources } from './layout-modules.ts';
 
 export const srcRoot = fileURLToPath(new URL('../../src/', import.meta.url));
 

@@ -20,8 +20,8 @@ export interface AdaptivePipelines {
 
 export async function createAdaptivePipelines(device: GPUDevice, features: ShaderFeatures): Promise<AdaptivePipelines> {
   const [error, compact] = await Promise.all([
-    computePipeline(device, 'adaptiveSampling', 'adaptive_error', features),
-    computePipeline(device, 'adaptiveSampling', 'adaptive_compact', features),
+    computePipeline(device, pathTracerBindings, 'adaptiveSampling', 'adaptive_error', features),
+    computePipeline(device, pathTracerBindings, 'adaptiveSampling', 'adaptive_compact', features),
   ]);
   return { error, compact };
 }

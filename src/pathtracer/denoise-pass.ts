@@ -30,11 +30,11 @@ export interface DenoisePipelines {
 
 export async function createDenoisePipelines(device: GPUDevice, features: ShaderFeatures): Promise<DenoisePipelines> {
   const [prepare, atrous, energyPartial, energyTotal, finish] = await Promise.all([
-    computePipeline(device, 'denoiseInput', 'denoise_prepare', features),
-    computePipeline(device, 'denoise', 'denoise_atrous', features),
-    computePipeline(device, 'denoise', 'denoise_energy_partial', features),
-    computePipeline(device, 'denoise', 'denoise_energy_total', features),
-    computePipeline(device, 'denoise', 'denoise_finish', features),
+    computePipeline(device, pathTracerBindings, 'denoiseInput', 'denoise_prepare', features),
+    computePipeline(device, pathTracerBindings, 'denoise', 'denoise_atrous', features),
+    computePipeline(device, pathTracerBindings, 'denoise', 'denoise_energy_partial', features),
+    computePipeline(device, pathTracerBindings, 'denoise', 'denoise_energy_total', features),
+    computePipeline(device, pathTracerBindings, 'denoise', 'denoise_finish', features),
   ]);
   return { prepare, atrous, energyPartial, energyTotal, finish };
 }

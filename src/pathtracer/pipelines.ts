@@ -1,4 +1,6 @@
 import { GpuRendererError } from '../errors/gpu-renderer-error.ts';
+import { pathTracerBindings } from '../gpu-layout/bindings.ts';
+import { displayBindings } from '../shaders/display-bindings.ts';
 import { ShaderStage } from '../gpu/webgpu-constants.ts';
 import type { ShaderFeatures } from '../shaders/features.ts';
 import { computePipeline, programLayout, programModule, type KernelPipeline, type ProgramLayout } from '../shaders/program-pipelines.ts';
@@ -32,10 +34,10 @@ async function createPipelines(device: GPUDevice, features: ShaderFeatures): Pro
   try {
     const entries = await Promise.all(
       (Object.entries(wavefrontKernels) as [WavefrontKernelName, (typeof wavefrontKernels)[WavefrontKernelName]][]).map(
-        async ([name, k]) => [name, await computePipeline(device, k.program, k.entryPoint, features)] as const,
+        async ([name, k]) => [name, await computePipeline(device, pathTracerBindings, k.program, k.entryPoint, features)] as const,
       ),
     );
-    const resolve = await computePipeline(device, 'resolve', 'resolve_pixels', features);
+    const resolve = await computePipeline(device, displayBindings, 'resolve', 'resolve_pixels', features);
     pipelines = { kernels: Object.fromEntries(entries) as Record<WavefrontKernelName, KernelPipeline>, resolve };
   } catch (error) {
     failure = error;
@@ -63,7 +65,7 @@ export function pathTracerPipelines(device: GPUDevice, features: ShaderFeatures)
 
 /** Render pipeline drawing the display resolve into a canvas texture of `format`. */
 export async function createPresentPipeline(device: GPUDevice, format: GPUTextureFormat): Promise<{ pipeline: GPURenderPipeline; layout: ProgramLayout }> {
-  const layout = programLayout(device, 'present', ShaderStage.FRAGMENT);
+  const layout = programLayout(device, displayBindings, 'present', ShaderStage.FRAGMENT);
   const module = await programModule(device, 'present');
   const pipeline = await device.createRenderPipelineAsync({
     label: 'present',

@@ -2,16 +2,19 @@
  * The GPU-program layer every renderer builds on (the path tracer, its BVH builder and denoisers,
  * the raster renderer): bind group layouts from a program's reflected bindings and its group's
  * binding table, shader modules compiled once per device with WGSL errors turned into typed errors,
- * override constants from the shader features, and compute pipelines from those.
+ * override constants from the shader features, and compute pipelines from those. The layer sits
+ * below the code that owns each binding table, so callers hand it theirs.
  */
 import { GpuRendererError } from '../errors/gpu-renderer-error.ts';
-import { bindingLayoutEntry } from '../gpu-layout/bindings.ts';
+import { bindingLayoutEntry, type BindingSpec } from '../gpu-layout/bindings.ts';
 import { ShaderStage } from '../gpu/webgpu-constants.ts';
-import { bindingTables } from './binding-tables.ts';
 import type { ShaderFeatures } from './features.ts';
 import { generatedPrograms } from './programs.generated.ts';
 import { programWgsl } from './program-wgsl.ts';
 import { programSpecs, type ProgramName } from './programs.ts';
+
+/** A program group's binding table (gpu-layout/bindings.ts and its peers), by binding name. */
+export type BindingTable = Readonly<Record<string, BindingSpec>>;
 
 export interface ProgramLayout {
   /** Bind group layouts by group index (empty layouts fill unused lower groups). */
@@ -26,22 +29,22 @@ export interface KernelPipeline extends ProgramLayout {
 }
 
 /**
- * Explicit bind group layouts for `bindings` of the program's binding table: by default exactly the
- * bindings its linked WGSL declares (reflected at build time). Programs that share bind groups
- * (a raster binding set) pass the bindings they share instead. `visibility` applies to the bindings
- * whose table entry names no stages.
+ * Explicit bind group layouts for `bindings` of the program's binding table `table`: by default
+ * exactly the bindings its linked WGSL declares (reflected at build time, checked against the
+ * table there). Programs that share bind groups (a raster binding set) pass the bindings they share
+ * instead. `visibility` applies to the bindings whose table entry names no stages.
  */
 export function programLayout(
   device: GPUDevice,
+  table: BindingTable,
   program: ProgramName,
   visibility: number = ShaderStage.COMPUTE,
   bindings: readonly string[] = generatedPrograms[program].bindings,
 ): ProgramLayout {
-  const table = bindingTables[programSpecs[program].group];
   const byGroup: string[][] = [];
   for (const name of bindings) {
     const spec = table[name];
-    if (spec === undefined) throw new Error(`program ${program}: binding ${name} is not in its binding table`);
+    if (spec === undefined) throw new Error(`program ${program} (group ${programSpecs[program].group}): binding ${name} is not in the table it was given`);
     (byGroup[spec.group] ??= []).push(name);
   }
   for (let g = 0; g < byGroup.length; g++) byGroup[g] ??= [];
@@ -91,8 +94,8 @@ export function overrideConstants(program: ProgramName, features: ShaderFeatures
 }
 
 /** A compute pipeline of one entry point of a program, on its reflected layout. */
-export async function computePipeline(device: GPUDevice, program: ProgramName, entryPoint: string, features: ShaderFeatures): Promise<KernelPipeline> {
-  const layout = programLayout(device, program);
+export async function computePipeline(device: GPUDevice, table: BindingTable, program: ProgramName, entryPoint: string, features: ShaderFeatures): Promise<KernelPipeline> {
+  const layout = programLayout(device, table, program);
   const module = await programModule(device, program);
   const pipeline = await device.createComputePipelineAsync({
     label: `${program}.${entryPoint}`,

@@ -3,7 +3,7 @@
 // the binding table (reflection of the linked WGSL, not a hand-kept list).
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { bindingTables } from '../../src/shaders/binding-tables.ts';
+import { bindingTables } from '../../scripts/shader-build/binding-tables.ts';
 import { generatedPrograms } from '../../src/shaders/programs.generated.ts';
 import { programWgsl } from '../../src/shaders/program-wgsl.ts';
 import { programGroups, programSpecs, type ProgramName } from '../../src/shaders/programs.ts';

@@ -7,7 +7,7 @@
 import { ShaderStage } from '../../gpu/webgpu-constants.ts';
 import { programLayout, programModule } from '../../shaders/program-pipelines.ts';
 import type { ProgramName } from '../../shaders/programs.ts';
-import { rasterSetBindings } from './raster-bindings.ts';
+import { rasterBindings, rasterSetBindings } from './raster-bindings.ts';
 
 export const HDR_FORMAT: GPUTextureFormat = 'rgba16float';
 export const DEPTH_FORMAT: GPUTextureFormat = 'depth24plus';
@@ -58,12 +58,12 @@ export async function createRasterPipelines(device: GPUDevice, sampleCount: numb
   const modules = new Map<RasterProgram, GPUShaderModule>(compiled);
   const module = (name: RasterProgram): GPUShaderModule => modules.get(name)!;
   // Each binding set's layouts hold the whole set, so one bind group serves every program of it.
-  const draw = programLayout(device, 'rasterForward', ShaderStage.VERTEX | ShaderStage.FRAGMENT, rasterSetBindings('draw'));
+  const draw = programLayout(device, rasterBindings, 'rasterForward', ShaderStage.VERTEX | ShaderStage.FRAGMENT, rasterSetBindings('draw'));
   const drawLayouts = draw.groups;
   const drawPipelineLayout = draw.layout;
-  const skin = programLayout(device, 'rasterSkin', ShaderStage.COMPUTE, rasterSetBindings('skin'));
-  const ibl = programLayout(device, 'rasterIblPrefilter', ShaderStage.COMPUTE, rasterSetBindings('ibl'));
-  const resolve = programLayout(device, 'rasterResolve', ShaderStage.FRAGMENT, rasterSetBindings('resolve'));
+  const skin = programLayout(device, rasterBindings, 'rasterSkin', ShaderStage.COMPUTE, rasterSetBindings('skin'));
+  const ibl = programLayout(device, rasterBindings, 'rasterIblPrefilter', ShaderStage.COMPUTE, rasterSetBindings('ibl'));
+  const resolve = programLayout(device, rasterBindings, 'rasterResolve', ShaderStage.FRAGMENT, rasterSetBindings('resolve'));
   const [skinLayout, iblLayout, resolveLayout] = [skin.groups[0]!, ibl.groups[0]!, resolve.groups[0]!];
   const cache = new Map<string, GPURenderPipeline | GPUComputePipeline>();
   const cached = <T extends GPURenderPipeline | GPUComputePipeline>(key: string, make: () => T): T => {

@@ -78,11 +78,11 @@ async function networkPipelines(device: GPUDevice, precision: OidnPrecision): Pr
   let failure: unknown;
   try {
     const [conv, exposureBins, exposureReduce, input, output] = await Promise.all([
-      computePipeline(device, program('oidnConv'), 'oidn_conv3x3', allShaderFeatures),
-      computePipeline(device, 'oidnExposure', 'oidn_exposure_bins', allShaderFeatures),
-      computePipeline(device, 'oidnExposure', 'oidn_exposure_reduce', allShaderFeatures),
-      computePipeline(device, program('oidnInput'), 'oidn_input', allShaderFeatures),
-      computePipeline(device, program('oidnOutput'), 'oidn_output', allShaderFeatures),
+      computePipeline(device, oidnBindings, program('oidnConv'), 'oidn_conv3x3', allShaderFeatures),
+      computePipeline(device, oidnBindings, 'oidnExposure', 'oidn_exposure_bins', allShaderFeatures),
+      computePipeline(device, oidnBindings, 'oidnExposure', 'oidn_exposure_reduce', allShaderFeatures),
+      computePipeline(device, oidnBindings, program('oidnInput'), 'oidn_input', allShaderFeatures),
+      computePipeline(device, oidnBindings, program('oidnOutput'), 'oidn_output', allShaderFeatures),
     ]);
     pipelines = { conv, exposureBins, exposureReduce, input, output };
   } catch (error) {
