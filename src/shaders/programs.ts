@@ -1,16 +1,18 @@
 /**
  * Every GPU program the package ships, the path tracer's and the raster renderer's: a root WESL
- * module (path under src/, `::`-separated, as in `import` statements) and the group it belongs to. `npm run generate`
- * (scripts/shader-build/programs.ts) links each program with the WESL linker, reflects the
- * bindings and `override` constants that survive linking into programs.generated.ts, and writes
- * each group's WGSL to a module of its own (wgsl/<file>.generated.ts).
+ * module (path under src/, `::`-separated, as in `import` statements) and the group it belongs
+ * to. `npm run generate` (scripts/shader-build/programs.ts) links each program with the WESL
+ * linker, reflects the bindings and `override` constants that survive linking into
+ * programs.generated.ts, and writes each group's WGSL to a module of its own
+ * (wgsl/<file>.generated.ts). docs/gpu-programs.md describes the whole layer.
  */
 
 /**
  * Program groups: a group's programs take their bindings from one binding table and ship in one
  * generated module. The groups a first frame needs are bundled with the code ('eager'); the others
  * are imported on first use ('lazy'), so a bundler splits them into chunks of their own and an app
- * that never builds a BVH on the GPU or runs the OIDN denoiser never downloads their WGSL.
+ * that never builds a BVH on the GPU, runs the OIDN denoiser or rasterizes never downloads their
+ * WGSL.
  */
 export const programGroups = {
   /** The wavefront kernels, adaptive sampling and the à-trous denoiser. */
