@@ -18,10 +18,17 @@ export type BindGroupName = keyof typeof bindGroupIndices;
 export type BindingKind =
   | { kind: 'uniform'; type: string; dynamic?: boolean }
   | { kind: 'storage'; type: string; access: 'read' | 'read_write' }
-  | { kind: 'texture'; type: string; sampleType: GPUTextureSampleType; viewDimension: GPUTextureViewDimension };
+  | { kind: 'texture'; type: string; sampleType: GPUTextureSampleType; viewDimension?: GPUTextureViewDimension }
+  | { kind: 'sampler'; comparison?: boolean }
+  | { kind: 'storageTexture'; format: GPUTextureFormat };
 
-/** `group` is a bind group index (the path tracer uses bindGroupIndices). */
-export type BindingSpec = { group: number; binding: number; doc: string } & BindingKind;
+/**
+ * One binding of a binding table (every GPU program's tables use this shape). `group` is a bind
+ * group index (the path tracer uses bindGroupIndices); `visibility` (ShaderStage bits) is set where
+ * a table's bind group layouts are shared by programs of several stages, and otherwise the stage of
+ * the program the layout is built for.
+ */
+export type BindingSpec = { group: number; binding: number; doc: string; visibility?: number } & BindingKind;
 
 const G = bindGroupIndices;
 
@@ -71,12 +78,24 @@ export function bindingDeclaration(name: string, spec: BindingSpec): string {
   const comment = `// ${spec.doc}`;
   if (spec.kind === 'uniform') return `${comment}\n${at} var<uniform> ${name}: ${spec.type};`;
   if (spec.kind === 'storage') return `${comment}\n${at} var<storage, ${spec.access}> ${name}: ${spec.type};`;
+  if (spec.kind === 'sampler') return `${comment}\n${at} var ${name}: ${spec.comparison ? 'sampler_comparison' : 'sampler'};`;
+  if (spec.kind === 'storageTexture') return `${comment}\n${at} var ${name}: texture_storage_2d<${spec.format}, write>;`;
   return `${comment}\n${at} var ${name}: ${spec.type};`;
 }
 
-/** The WebGPU layout entry of one binding (compute visibility unless given). */
+/** The WebGPU layout entry of one binding (the spec's visibility, else `visibility`). */
 export function bindingLayoutEntry(spec: BindingSpec, visibility: number): GPUBindGroupLayoutEntry {
-  if (spec.kind === 'uniform') return { binding: spec.binding, visibility, buffer: { type: 'uniform', hasDynamicOffset: spec.dynamic === true } };
-  if (spec.kind === 'storage') return { binding: spec.binding, visibility, buffer: { type: spec.access === 'read' ? 'read-only-storage' : 'storage' } };
-  return { binding: spec.binding, visibility, texture: { sampleType: spec.sampleType, viewDimension: spec.viewDimension } };
+  const base = { binding: spec.binding, visibility: spec.visibility ?? visibility };
+  switch (spec.kind) {
+    case 'uniform':
+      return { ...base, buffer: { type: 'uniform', hasDynamicOffset: spec.dynamic === true } };
+    case 'storage':
+      return { ...base, buffer: { type: spec.access === 'read' ? 'read-only-storage' : 'storage' } };
+    case 'texture':
+      return { ...base, texture: { sampleType: spec.sampleType, viewDimension: spec.viewDimension ?? '2d' } };
+    case 'sampler':
+      return { ...base, sampler: { type: spec.comparison ? 'comparison' : 'filtering' } };
+    case 'storageTexture':
+      return { ...base, storageTexture: { access: 'write-only', format: spec.format, viewDimension: '2d' } };
+  }
 }

@@ -1,7 +1,7 @@
 /**
  * Constants shared by TypeScript and WGSL: the single definition of every slot number, flag bit,
  * kind id and size both sides must agree on. The `package::layout::constants` WGSL module is
- * generated from `gpuConstants` (see shaders/layout-modules.ts), so nothing is kept equal by comment.
+ * generated from `gpuConstants` (see scripts/shader-build/layout-modules.ts), so nothing is kept equal by comment.
  */
 
 /**

@@ -16,18 +16,6 @@ const src = fileURLToPath(new URL('../../src/', import.meta.url));
 const knownUpward: Readonly<Record<string, string>> = {
   // Texture transforms move under the material-extension registry ("extensions").
   'scene/material.ts -> materials/textures/texture-transform.ts': 'extensions',
-  // One GPU-program layer (registry, layouts, pipelines) below its users ("programs").
-  'shaders/layout-modules.ts -> accel/gpu-build/bindings.ts': 'programs',
-  'shaders/layout-modules.ts -> film/denoise/oidn/bindings.ts': 'programs',
-  'accel/gpu-build/dispatch-plan.ts -> pathtracer/pipelines.ts': 'programs',
-  'accel/gpu-build/pipelines.ts -> pathtracer/pipelines.ts': 'programs',
-  'film/denoise/oidn/oidn-network.ts -> pathtracer/pipelines.ts': 'programs',
-  'film/adaptive/scheduler.ts -> pathtracer/bind-groups.ts': 'programs',
-  'film/adaptive/scheduler.ts -> pathtracer/pipelines.ts': 'programs',
-  'film/denoise/atrous-denoiser.ts -> pathtracer/bind-groups.ts': 'programs',
-  'film/denoise/atrous-denoiser.ts -> pathtracer/pipelines.ts': 'programs',
-  'film/display/film-display.ts -> pathtracer/bind-groups.ts': 'programs',
-  'film/display/film-display.ts -> pathtracer/pipelines.ts': 'programs',
 };
 
 function sourceFiles(dir: string): string[] {

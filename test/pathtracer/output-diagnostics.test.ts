@@ -15,6 +15,7 @@ import { filmAovPixelLayout, filmMomentsLayout, filmPixelLayout, frameUniformsLa
 import { allocateStructArray, writeStruct } from '../../src/gpu-layout/struct-layout.ts';
 import { BufferUsage } from '../../src/gpu/webgpu-constants.ts';
 import { generatedPrograms } from '../../src/shaders/programs.generated.ts';
+import { programWgsl } from '../../src/shaders/program-wgsl.ts';
 import { readBuffer, testDevice, uploadBuffer } from '../helpers/gpu.ts';
 import { runTestProgram } from '../helpers/wgsl.ts';
 import { cornellRenderer, luminance, rect, squareCamera } from './output-helpers.ts';
@@ -220,7 +221,7 @@ test('invalid contributions are dropped and counted, and each sample that lost o
     wave: uploadBuffer(device, wave, BufferUsage.UNIFORM),
   };
   const program = generatedPrograms.accumulate;
-  const module = device.createShaderModule({ code: program.wgsl });
+  const module = device.createShaderModule({ code: await programWgsl('accumulate') });
   const pipeline = await device.createComputePipelineAsync({ layout: 'auto', compute: { module, entryPoint: 'accumulate_samples' } });
   const encoder = device.createCommandEncoder();
   const pass = encoder.beginComputePass();

@@ -2,9 +2,9 @@ import { adaptiveListSlots } from '../../gpu-layout/constants.ts';
 import { adaptiveUniformsLayout } from '../../gpu-layout/records.ts';
 import { writeStruct } from '../../gpu-layout/struct-layout.ts';
 import { BufferUsage, MapMode } from '../../gpu/webgpu-constants.ts';
-import { createProgramBindGroups, type PathTracerResourceMap } from '../../pathtracer/bind-groups.ts';
+import { createProgramBindGroups, type PathTracerResourceMap } from '../../shaders/program-bind-groups.ts';
 import { pathTracerBindings } from '../../gpu-layout/bindings.ts';
-import { computePipeline, type KernelPipeline } from '../../pathtracer/pipelines.ts';
+import { computePipeline, type KernelPipeline } from '../../shaders/program-pipelines.ts';
 import type { DispatchCounter } from '../dispatch-counter.ts';
 import { maxSamplesPerFrame, type WavefrontAdaptiveSettings } from './settings.ts';
 import type { ShaderFeatures } from '../../shaders/features.ts';
@@ -19,8 +19,8 @@ export interface AdaptivePipelines {
 
 export async function createAdaptivePipelines(device: GPUDevice, features: ShaderFeatures): Promise<AdaptivePipelines> {
   const [error, compact] = await Promise.all([
-    computePipeline(device, 'adaptiveSampling', 'adaptive_error', features),
-    computePipeline(device, 'adaptiveSampling', 'adaptive_compact', features),
+    computePipeline(device, pathTracerBindings, 'adaptiveSampling', 'adaptive_error', features),
+    computePipeline(device, pathTracerBindings, 'adaptiveSampling', 'adaptive_compact', features),
   ]);
   return { error, compact };
 }

@@ -10,8 +10,8 @@ import { BufferUsage } from '../../gpu/webgpu-constants.ts';
 import type { DenoiserDispatchTally, WavefrontDenoiser, WavefrontDenoiserEntry, WavefrontDenoiserTarget } from './denoiser.ts';
 import type { WavefrontDenoiseSettings } from './settings.ts';
 import type { ShaderFeatures } from '../../shaders/features.ts';
-import { createProgramBindGroups, type PathTracerResourceMap } from '../../pathtracer/bind-groups.ts';
-import { computePipeline, type KernelPipeline } from '../../pathtracer/pipelines.ts';
+import { createProgramBindGroups, type PathTracerResourceMap } from '../../shaders/program-bind-groups.ts';
+import { computePipeline, type KernelPipeline } from '../../shaders/program-pipelines.ts';
 
 const bindingOf = (name: string): number => pathTracerBindings[name as keyof typeof pathTracerBindings].binding;
 
@@ -25,11 +25,11 @@ export interface DenoisePipelines {
 
 export async function createDenoisePipelines(device: GPUDevice, features: ShaderFeatures): Promise<DenoisePipelines> {
   const [prepare, atrous, energyPartial, energyTotal, finish] = await Promise.all([
-    computePipeline(device, 'denoiseInput', 'denoise_prepare', features),
-    computePipeline(device, 'denoise', 'denoise_atrous', features),
-    computePipeline(device, 'denoise', 'denoise_energy_partial', features),
-    computePipeline(device, 'denoise', 'denoise_energy_total', features),
-    computePipeline(device, 'denoise', 'denoise_finish', features),
+    computePipeline(device, pathTracerBindings, 'denoiseInput', 'denoise_prepare', features),
+    computePipeline(device, pathTracerBindings, 'denoise', 'denoise_atrous', features),
+    computePipeline(device, pathTracerBindings, 'denoise', 'denoise_energy_partial', features),
+    computePipeline(device, pathTracerBindings, 'denoise', 'denoise_energy_total', features),
+    computePipeline(device, pathTracerBindings, 'denoise', 'denoise_finish', features),
   ]);
   return { prepare, atrous, energyPartial, energyTotal, finish };
 }

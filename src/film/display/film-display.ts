@@ -1,8 +1,9 @@
 import { GpuRendererError } from '../../errors/gpu-renderer-error.ts';
 import { displayBindings } from '../../shaders/display-bindings.ts';
-import { createProgramBindGroups, type PathTracerResourceMap } from '../../pathtracer/bind-groups.ts';
+import { createProgramBindGroups, type PathTracerResourceMap } from '../../shaders/program-bind-groups.ts';
 import { preferredCanvasFormat, type CanvasLike } from './canvas-target.ts';
-import { createPresentPipeline, type KernelPipeline } from '../../pathtracer/pipelines.ts';
+import type { KernelPipeline } from '../../shaders/program-pipelines.ts';
+import { createPresentPipeline } from './pipelines.ts';
 
 const displayBindingOf = (name: string): number => displayBindings[name as keyof typeof displayBindings].binding;
 

@@ -12,7 +12,7 @@ import { writeStruct } from '../../../gpu-layout/struct-layout.ts';
 import { BufferUsage } from '../../../gpu/webgpu-constants.ts';
 import { allShaderFeatures } from '../../../shaders/features.ts';
 import type { ProgramName } from '../../../shaders/programs.ts';
-import { computePipeline, type KernelPipeline } from '../../../pathtracer/pipelines.ts';
+import { computePipeline, type KernelPipeline } from '../../../shaders/program-pipelines.ts';
 import { oidnBindings, type OidnBindingName } from './bindings.ts';
 import { encodeValues, packConv, planTensors, planTiles, type OidnPrecision, type PackedConv, type TilePlan, type TensorPlan } from './packing.ts';
 import { autoexposureBinSize } from './transfer.ts';
@@ -78,11 +78,11 @@ async function networkPipelines(device: GPUDevice, precision: OidnPrecision): Pr
   let failure: unknown;
   try {
     const [conv, exposureBins, exposureReduce, input, output] = await Promise.all([
-      computePipeline(device, program('oidnConv'), 'oidn_conv3x3', allShaderFeatures),
-      computePipeline(device, 'oidnExposure', 'oidn_exposure_bins', allShaderFeatures),
-      computePipeline(device, 'oidnExposure', 'oidn_exposure_reduce', allShaderFeatures),
-      computePipeline(device, program('oidnInput'), 'oidn_input', allShaderFeatures),
-      computePipeline(device, program('oidnOutput'), 'oidn_output', allShaderFeatures),
+      computePipeline(device, oidnBindings, program('oidnConv'), 'oidn_conv3x3', allShaderFeatures),
+      computePipeline(device, oidnBindings, 'oidnExposure', 'oidn_exposure_bins', allShaderFeatures),
+      computePipeline(device, oidnBindings, 'oidnExposure', 'oidn_exposure_reduce', allShaderFeatures),
+      computePipeline(device, oidnBindings, program('oidnInput'), 'oidn_input', allShaderFeatures),
+      computePipeline(device, oidnBindings, program('oidnOutput'), 'oidn_output', allShaderFeatures),
     ]);
     pipelines = { conv, exposureBins, exposureReduce, input, output };
   } catch (error) {

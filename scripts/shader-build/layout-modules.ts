@@ -11,14 +11,14 @@
  * - `package::layout::heaps`: `load_<record>(offset)` readers of records stored in vec4 heaps;
  * - `package::layout::features`: the `override` specialisation constants (shaders/features.ts).
  */
-import { bindingDeclaration, pathTracerBindings, type BindingSpec } from '../gpu-layout/bindings.ts';
-import { gpuConstants } from '../gpu-layout/constants.ts';
-import { heapRecordLayouts, wavefrontRecordLayouts } from '../gpu-layout/records.ts';
-import { structLayoutToWgsl, type StructLayout } from '../gpu-layout/struct-layout.ts';
-import { oidnBindings } from '../film/denoise/oidn/bindings.ts';
-import { displayBindings } from './display-bindings.ts';
-import { bvhBuildBindings } from '../accel/gpu-build/bindings.ts';
-import { shaderFeatures } from './features.ts';
+import { bindingDeclaration, pathTracerBindings, type BindingSpec } from '../../src/gpu-layout/bindings.ts';
+import { gpuConstants } from '../../src/gpu-layout/constants.ts';
+import { heapRecordLayouts, wavefrontRecordLayouts } from '../../src/gpu-layout/records.ts';
+import { structLayoutToWgsl, type StructLayout } from '../../src/gpu-layout/struct-layout.ts';
+import { oidnBindings } from '../../src/film/denoise/oidn/bindings.ts';
+import { displayBindings } from '../../src/shaders/display-bindings.ts';
+import { bvhBuildBindings } from '../../src/accel/gpu-build/bindings.ts';
+import { shaderFeatures } from '../../src/shaders/features.ts';
 
 /** Module path (relative, `/`-separated, `.wesl`) -> source. */
 export type WeslSources = Record<string, string>;
@@ -51,7 +51,7 @@ function importLines(used: { records: string[]; constants: string[] }): string {
 
 function bindingsModule(table: Record<string, BindingSpec>): string {
   const specs = Object.entries(table);
-  const imports = importLines(namesUsedBy(specs.map(([, s]) => s.type)));
+  const imports = importLines(namesUsedBy(specs.map(([, s]) => ('type' in s ? s.type : ''))));
   return `${imports}\n\n${specs.map(([name, spec]) => bindingDeclaration(name, spec)).join('\n')}\n`;
 }
 
