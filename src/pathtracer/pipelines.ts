@@ -1,9 +1,8 @@
 import { GpuRendererError } from '../errors/gpu-renderer-error.ts';
 import { pathTracerBindings } from '../gpu-layout/bindings.ts';
 import { displayBindings } from '../shaders/display-bindings.ts';
-import { ShaderStage } from '../gpu/webgpu-constants.ts';
 import type { ShaderFeatures } from '../shaders/features.ts';
-import { computePipeline, programLayout, programModule, type KernelPipeline, type ProgramLayout } from '../shaders/program-pipelines.ts';
+import { computePipeline, type KernelPipeline } from '../shaders/program-pipelines.ts';
 import type { ProgramName } from '../shaders/programs.ts';
 
 /** The compute kernels of one wavefront wave, with the program and entry point of each. */
