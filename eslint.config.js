@@ -4,7 +4,7 @@ import js from '@eslint/js';
 import tseslint from 'typescript-eslint';
 
 export default tseslint.config(
-  { ignores: ['dist/**', 'node_modules/**', 'coverage/**', 'out/**', 'src/shaders/programs.generated.ts', 'src/io/gltf/codecs/*.generated.ts', 'weights/**/*.js'] },
+  { ignores: ['dist/**', 'node_modules/**', 'coverage/**', 'out/**', 'src/shaders/programs.generated.ts', 'src/shaders/program-sources.generated.ts', 'src/shaders/wgsl/**', 'src/io/gltf/codecs/*.generated.ts', 'weights/**/*.js'] },
   js.configs.recommended,
   ...tseslint.configs.recommended,
   {

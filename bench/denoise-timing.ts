@@ -15,9 +15,9 @@ import { mkdir, writeFile } from 'node:fs/promises';
 import { fileURLToPath } from 'node:url';
 import { acquireGpuDevice } from '../src/gpu/acquire-device.ts';
 import { BufferUsage, MapMode } from '../src/gpu/webgpu-constants.ts';
-import { OidnNetwork } from '../src/post/denoise/oidn/oidn-network.ts';
-import type { OidnPrecision } from '../src/post/denoise/oidn/packing.ts';
-import { loadOidnModel } from '../src/post/denoise/oidn/weights.ts';
+import { OidnNetwork } from '../src/film/denoise/oidn/oidn-network.ts';
+import type { OidnPrecision } from '../src/film/denoise/oidn/packing.ts';
+import { loadOidnModel } from '../src/film/denoise/oidn/weights.ts';
 
 export interface DenoiseTimingRow {
   precision: OidnPrecision;

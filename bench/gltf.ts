@@ -29,7 +29,7 @@ import { buildBvhAsync, terminateBvhWorkers, warmBvhWorkers } from '../src/accel
 import { loadGltfScene, type GltfScene } from '../src/io/index.ts';
 import { createWavefrontPathTracingComputeRenderer } from '../src/pathtracer/index.ts';
 import type { WavefrontPathTracingRenderer } from '../src/pathtracer/types.ts';
-import { srgbToLinear } from '../src/post/tone-mapping.ts';
+import { srgbToLinear } from '../src/color/srgb.ts';
 import type { WavefrontImageInput, WavefrontMaterialInput, WavefrontSceneDescription, WavefrontTextureRefInput } from '../src/scene/types.ts';
 import { terrainGlb, texturedRoomDocument } from './gltf-assets.ts';
 import { cpuMark, isCpuAdapter, otherLoadCores, workerCpuSeconds } from './cpu-clock.ts';

@@ -1,6 +1,7 @@
 /**
  * GPU figures of the path tracer with its defaults (no tileSize), the same code on any adapter
- * (`npm run bench -- --gpu-only`, or `node bench/gpu.ts`): the cases of the "GPU-first" issue.
+ * (`npm run bench -- --gpu-only`, or `node bench/gpu.ts`): the workloads a production renderer must
+ * sustain (a 1080p still, a 1080p realtime loop, a million-triangle mesh).
  *
  * - Cornell box 1920x1080, 32 spp in one renderFrame, maxDepth 8;
  * - the realtime loop: 1920x1080, 1 spp per renderFrame, maxDepth 8, 30 frames, each frame
@@ -52,7 +53,7 @@ export interface GpuBenchRow {
 
 export interface GpuBenchmark {
   adapter: string;
-  /** Fraction of the issue's samples (and loop frames) rendered; 1 = the full workload. */
+  /** Fraction of the full workload's samples (and loop frames) rendered; 1 = the full workload. */
   scale: number;
   pathRecordBytes: number;
   /** Modelled bytes of path state per path per bounce, this version and the five-kernel wavefront before it. */

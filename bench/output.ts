@@ -1,5 +1,5 @@
 /**
- * Production-output measurements (issue 9), separate from the throughput comparison with a
+ * Production-output measurements (adaptive sampling, denoising), separate from the throughput comparison with a
  * baseline: run `BENCH_OUTPUT=1 npm run bench -- --no-baseline --no-bvh` (bench/run.ts calls
  * runOutputBenchmark) or `node bench/output.ts` on its own. Prints tables and writes
  * bench/results/output.json.
@@ -35,8 +35,8 @@ import { encode } from 'fast-png';
 import { loadGltfScene } from '../src/io/gltf/load-gltf-scene.ts';
 import { createWavefrontPathTracingComputeRenderer } from '../src/pathtracer/index.ts';
 import type { WavefrontPathTracingOptions, WavefrontPathTracingRenderer } from '../src/pathtracer/types.ts';
-import { displayPeakSignalToNoiseRatio, displayStructuralSimilarity } from '../src/post/metrics/display.ts';
-import { peakSignalToNoiseRatio, relativeMeanSquaredError, rootMeanSquaredError } from '../src/post/metrics/image-error.ts';
+import { displayPeakSignalToNoiseRatio, displayStructuralSimilarity } from '../src/film/metrics/display.ts';
+import { peakSignalToNoiseRatio, relativeMeanSquaredError, rootMeanSquaredError } from '../src/film/metrics/image-error.ts';
 import { createCornellBoxScene } from '../src/scene/cornell-box.ts';
 import type { WavefrontSceneDescription } from '../src/scene/types.ts';
 

@@ -76,7 +76,7 @@ if (options.bvh) {
   if (bvh.gpuAdapter) {
     console.log(`GPU LBVH on ${bvh.gpuAdapter}:`);
     console.table(bvh.gpuVersusCpu.map((g) => ({ mesh: g.mesh, 'SAH GPU/CPU': Number(g.sahCostRatio.toFixed(3)), 'time GPU/CPU (1 thread)': Number(g.buildTimeRatio.toFixed(3)), 'GPU ms': g.gpuMs === null ? '' : Number(g.gpuMs.toFixed(2)) })));
-    // The goal of issue 16: 1M triangles in <= 10 ms on an NVIDIA GPU; only a real NVIDIA adapter can say.
+    // The build-time goal (a million triangles rebuilt within a 10 ms frame slice) on an NVIDIA GPU; only a real NVIDIA adapter can say.
     const million = bvh.gpuVersusCpu.find((g) => g.mesh.endsWith(' 1M'));
     const nvidia = /nvidia/i.test(bvh.gpuAdapter);
     console.log(
@@ -218,7 +218,7 @@ if (options.output) {
   results.output = await runOutputBenchmark();
 }
 
-// GPU figures (bench/gpu.ts: the path tracer's defaults on the issue's 1080p cases; scaled down on
+// GPU figures (bench/gpu.ts: the path tracer's defaults on the 1080p cases; scaled down on
 // a CPU adapter): off with --no-gpu / BENCH_GPU=0 or another --x-only.
 if (options.gpu) {
   const { runGpuBenchmark, printGpuBenchmark } = await import('./gpu.ts');

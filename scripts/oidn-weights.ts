@@ -1,6 +1,6 @@
 // Part of `npm run generate`: turns the vendored Open Image Denoise weights (weights/oidn/*.tza,
 // Apache-2.0) into ES modules holding the bytes as base64, weights/oidn/<name>.<part>.js, and
-// src/post/denoise/oidn/weight-modules.generated.ts, which imports them as
+// src/film/denoise/oidn/weight-modules.generated.ts, which imports them as
 // `#oidn-weights/<name>.<part>.js` (package.json "imports"). So the sources, every build
 // (dist/esm, dist/cjs, dist/browser) and every bundler load them with plain dynamic imports: no
 // file lookup at run time, no bundler configuration, one copy in the package. Each part stays
@@ -10,7 +10,7 @@ import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
 
 export const oidnWeightsDir = fileURLToPath(new URL('../weights/oidn/', import.meta.url));
-const listing = fileURLToPath(new URL('../src/post/denoise/oidn/weight-modules.generated.ts', import.meta.url));
+const listing = fileURLToPath(new URL('../src/film/denoise/oidn/weight-modules.generated.ts', import.meta.url));
 
 /** Base64 characters per module (a multiple of 4). */
 export const oidnWeightPartChars = 400_000;

@@ -20,8 +20,8 @@ import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { createWavefrontPathTracingComputeRenderer } from '../../src/pathtracer/index.ts';
 import type { WavefrontPathTracingOptions } from '../../src/pathtracer/types.ts';
-import { displayPeakSignalToNoiseRatio, displayStructuralSimilarity } from '../../src/post/metrics/display.ts';
-import { peakSignalToNoiseRatio, relativeMeanSquaredError } from '../../src/post/metrics/image-error.ts';
+import { displayPeakSignalToNoiseRatio, displayStructuralSimilarity } from '../../src/film/metrics/display.ts';
+import { peakSignalToNoiseRatio, relativeMeanSquaredError } from '../../src/film/metrics/image-error.ts';
 import { createCornellBoxScene } from '../../src/scene/cornell-box.ts';
 import { gltfScene } from '../output.ts';
 

@@ -19,7 +19,7 @@ export interface LoaderCase {
   options: Record<string, Json>;
   abort: boolean;
   notes: string[];
-  /** Environment cases: decode with the post-processing reader (`decodeHdr`) instead of loadEnvironmentMap. */
+  /** Environment cases: decode with `decodeHdr` (the image-file API's errors and limits) instead of loadEnvironmentMap. */
   decoder?: 'decodeHdr';
 }
 

@@ -29,7 +29,7 @@ export function writeGlb(jsonText: string, bin: Uint8Array | undefined): Uint8Ar
 
 const dataUri = (bytes: Uint8Array): string => `data:application/octet-stream;base64,${Buffer.from(bytes).toString('base64')}`;
 
-/** A relative file name for a resource URI the seed wrote (never anything that leaves the folder). */
+/** A relative file name for a resource URI the seed asset wrote (never anything that leaves the folder). */
 function safeFile(uri: string): string | undefined {
   let path: string;
   try {

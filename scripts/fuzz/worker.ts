@@ -11,7 +11,7 @@ import { acquireGpuDevice } from '../../src/gpu/acquire-device.ts';
 import { loadGltfScene } from '../../src/io/gltf/load-gltf-scene.ts';
 import { loadSceneFile } from '../../src/io/scene-file-loader.ts';
 import { loadEnvironmentMap } from '../../src/lighting/load-environment-map.ts';
-import { decodeHdr } from '../../src/post/files/hdr-decode.ts';
+import { decodeHdr } from '../../src/io/images/radiance-hdr.ts';
 import { createWavefrontPathTracingComputeConfig } from '../../src/pathtracer/config.ts';
 import { createWavefrontPathTracingComputeRenderer } from '../../src/pathtracer/renderer.ts';
 import { prepareScene } from '../../src/pathtracer/scene/prepare-scene.ts';

@@ -1,14 +1,15 @@
 /**
  * The WESL project of the package: every `src/**\/*.wesl` file plus the layout modules generated
- * from the TypeScript tables. A file's module path is its path under src/ with kebab-case segments
- * turned into snake_case (WESL module names are identifiers): src/accel/bvh-traversal.wesl is
- * `package::accel::bvh_traversal`.
+ * from the TypeScript tables (the path tracer's and the raster's). A file's module path is its
+ * path under src/ with kebab-case segments turned into snake_case (WESL module names are
+ * identifiers): src/accel/bvh-traversal.wesl is `package::accel::bvh_traversal`.
  */
 import { readdirSync, readFileSync } from 'node:fs';
 import { join, relative, sep } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { link, type LinkedWesl } from 'wesl/core';
-import { layoutModules, type WeslSources } from '../../src/shaders/layout-modules.ts';
+import { rasterLayoutModule, rasterLayoutModuleKey } from '../../src/raster/gpu/raster-wgsl-layout.ts';
+import { layoutModules, type WeslSources } from './layout-modules.ts';
 
 export const srcRoot = fileURLToPath(new URL('../../src/', import.meta.url));
 
@@ -35,7 +36,7 @@ export function weslProjectSources(): WeslSources {
     if (sources[key] !== undefined) throw new Error(`two WESL files map to module ${key}`);
     sources[key] = readFileSync(file, 'utf8');
   }
-  for (const [key, text] of Object.entries(layoutModules())) {
+  for (const [key, text] of Object.entries({ ...layoutModules(), [rasterLayoutModuleKey]: rasterLayoutModule() })) {
     if (sources[key] !== undefined) throw new Error(`src/${key} collides with a generated layout module`);
     sources[key] = text;
   }

@@ -18,6 +18,7 @@
  * Workers are kept for later builds (starting one costs tens of milliseconds). In Node they are
  * `unref`ed while idle, so they never keep a process alive; `terminateBvhWorkers` ends them.
  */
+import { isNodeRuntime, nodeModule } from '../io/platform.ts';
 import { createBvhKernels } from './bvh-kernels.ts';
 import { bvhWorkerMain } from './bvh-worker-main.ts';
 
@@ -83,13 +84,10 @@ interface NodeWorker {
 }
 
 async function nodeSpawner(): Promise<Spawn | null> {
-  const proc = (globalThis as { process?: { versions?: { node?: string } } }).process;
-  if (!proc?.versions?.node) return null;
-  // A variable specifier: browser bundlers do not try to resolve (or polyfill) it.
-  const specifier = 'node:worker_threads';
+  if (!isNodeRuntime()) return null;
   let mod: { Worker: new (source: string, options: { eval: boolean }) => NodeWorker };
   try {
-    mod = (await import(/* @vite-ignore */ /* webpackIgnore: true */ specifier)) as typeof mod;
+    mod = await nodeModule<typeof mod>('node:worker_threads');
   } catch {
     return null;
   }

@@ -1,8 +1,8 @@
 /** Command-line parsing for `gpu-renderer`, kept free of I/O so it is testable in isolation. */
 import { GpuRendererError } from '../errors/gpu-renderer-error.ts';
-import type { WavefrontAovName } from '../post/aovs.ts';
-import { imageFileFormatFromPath, type ImageFileFormat } from '../post/files/image-file.ts';
-import { parseAovList, parseDuration } from '../post/option-parsing.ts';
+import type { WavefrontAovName } from '../film/aovs.ts';
+import { imageFileFormatFromPath, type ImageFileFormat } from '../io/images/image-file.ts';
+import { parseAovList, parseDuration } from '../film/option-parsing.ts';
 import { parseOrigin } from '../io/resource-policy.ts';
 import type { WavefrontToneMapping } from '../scene/types.ts';
 import { parseFrameList } from '../sequence/frame-list.ts';

@@ -3,7 +3,7 @@
  * renders with.
  */
 import { GpuRendererError } from '../errors/gpu-renderer-error.ts';
-import { locateSource, readSource, resolveResourcePolicy, type ResourcePolicy } from '../io/resource-policy.ts';
+import { readByteSource, resolveResourcePolicy, type ResourcePolicy } from '../io/resource-policy.ts';
 import type { EnvironmentMapInput } from '../lighting/environment-map.ts';
 import { loadEnvironmentMap, type EnvironmentMapSource, type NegativeTexelReport } from '../lighting/load-environment-map.ts';
 import type { WavefrontSceneDescription } from '../scene/types.ts';
@@ -27,7 +27,7 @@ async function environmentSource(path: string, resourcePolicy: ResourcePolicy | 
   if (!/\.m?js$/i.test(path)) return path;
   // Read as any source is: a regular file within the resource limits (never a pipe or device).
   const site = { code: 'INVALID_ENVIRONMENT', field: '--env' } as const;
-  const bytes = await readSource(await locateSource(path, site), await resolveResourcePolicy(resourcePolicy), site);
+  const { bytes } = await readByteSource(path, await resolveResourcePolicy(resourcePolicy), site);
   const text = new TextDecoder().decode(bytes);
   const match = /^\s*export\s+default\s+(['"])(data:[^'"\s]+)\1\s*;?\s*$/.exec(text);
   if (match === null) throw new GpuRendererError('INVALID_ENVIRONMENT', 'a .js environment map must be a module whose only statement is `export default "data:..."`', { field: '--env' });

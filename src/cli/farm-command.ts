@@ -1,6 +1,6 @@
 /** Runs `gpu-renderer farm ...` (parsed by farm-args.ts); returns the exit code. */
-import { readFile } from 'node:fs/promises';
 import { dirname, resolve } from 'node:path';
+import { defaultResourcePolicy, readByteSource } from '../io/resource-policy.ts';
 import { jobKeyOf, parseJobFile } from '../farm/farm-job.ts';
 import { formatFarmStatus, readFarmStatus, type FarmStatus } from '../farm/status.ts';
 import { submitFarmJob } from '../farm/submit.ts';
@@ -15,13 +15,9 @@ export async function runFarmCommand(command: FarmCommand, io: { stdout: Progres
     let render = command.render;
     if (command.jobFile !== undefined) {
       const path = resolve(command.jobFile);
-      let text: string;
-      try {
-        text = await readFile(path, 'utf8');
-      } catch (error) {
-        throw new GpuRendererError('INVALID_OPTION', `cannot read the job file ${path}: ${(error as Error).message}`, { field: 'job' });
-      }
-      render = parseJobFile(text, path, dirname(path));
+      // Read as any input is: a regular file within the resource limits (never a pipe or device).
+      const { bytes } = await readByteSource(path, defaultResourcePolicy, { code: 'INVALID_OPTION', field: 'job' });
+      render = parseJobFile(new TextDecoder().decode(bytes), path, dirname(path));
     }
     const options = { ...connection, stderr: io.stderr, ...(command.name !== undefined ? { name: command.name } : {}), ...(command.attempts !== undefined ? { attempts: command.attempts } : {}), ...(command.backoffMs !== undefined ? { backoffMs: command.backoffMs } : {}) };
     const submission = await submitFarmJob(render!, options).catch((error: unknown) => {

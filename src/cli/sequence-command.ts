@@ -6,7 +6,7 @@
  */
 import type { GltfScene } from '../io/gltf/gltf-scene-reader.ts';
 import { planGltfSequence, poseGltfSequenceItem, sequencePatternValues, type GltfSequenceItem } from '../sequence/gltf-sequence.ts';
-import { frameFileExists, writeFrameFile } from '../sequence/frame-files.ts';
+import { frameFileExists, writeFrameFile } from '../io/frame-files.ts';
 import { outputPaths } from '../sequence/output-pattern.ts';
 import { createSequenceRenderer } from '../sequence/sequence-renderer.ts';
 import type { RenderCommand } from './args.ts';

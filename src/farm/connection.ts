@@ -5,6 +5,7 @@
  */
 import type * as BullMQ from 'bullmq';
 import { GpuRendererError } from '../errors/gpu-renderer-error.ts';
+import { nodeModule } from '../io/platform.ts';
 
 export const defaultRedisUrl = 'redis://127.0.0.1:6379';
 export const defaultFarmQueue = 'gpu-renderer';
@@ -46,8 +47,7 @@ let bull: Promise<Bull> | undefined;
 
 /** BullMQ, imported on first use. */
 export function loadBullmq(): Promise<Bull> {
-  const specifier = 'bullmq';
-  bull ??= import(specifier) as Promise<Bull>;
+  bull ??= nodeModule<Bull>('bullmq');
   return bull;
 }
 
@@ -77,8 +77,7 @@ interface RedisConstructor {
  * naming where the address came from, within `timeoutMs`.
  */
 export async function connectRedis(connection: FarmConnection, timeoutMs = 3000): Promise<FarmRedis> {
-  const specifier = 'ioredis';
-  const module = (await import(specifier)) as { Redis?: RedisConstructor; default?: RedisConstructor };
+  const module = await nodeModule<{ Redis?: RedisConstructor; default?: RedisConstructor }>('ioredis');
   const Redis = (module.Redis ?? module.default) as RedisConstructor;
   // BullMQ needs maxRetriesPerRequest null for blocking commands; the first connection fails fast instead of retrying.
   const client = new Redis(connection.url, { lazyConnect: true, connectTimeout: timeoutMs, maxRetriesPerRequest: null, retryStrategy: () => null, enableOfflineQueue: false });

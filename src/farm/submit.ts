@@ -13,7 +13,7 @@ import type { ProgressStream } from '../cli/progress.ts';
 import { commandResourcePolicy, loadGltfForCommand } from '../cli/render-command.ts';
 import { planCommandSequence } from '../cli/sequence-command.ts';
 import { GpuRendererError } from '../errors/gpu-renderer-error.ts';
-import { frameFileExists } from '../sequence/frame-files.ts';
+import { frameFileExists } from '../io/frame-files.ts';
 import { connectRedis, farmKeys, loadBullmq, resolveFarmConnection, type FarmConnectionOptions } from './connection.ts';
 import { farmRenderCommand, frameRenderSettings, type FarmFrameData } from './farm-job.ts';
 

@@ -18,7 +18,7 @@ import { applyCameraFlags } from '../cli/camera-flags.ts';
 import { applyEnvironmentFlags } from '../cli/environment-flags.ts';
 import type { WavefrontCameraInput } from '../scene/types.ts';
 import type { GltfScene } from '../io/gltf/gltf-scene-reader.ts';
-import { frameFileExists, writeFrameFile } from '../sequence/frame-files.ts';
+import { frameFileExists, writeFrameFile } from '../io/frame-files.ts';
 import { poseGltfSequenceItem } from '../sequence/gltf-sequence.ts';
 import { createSequenceRenderer, type SequenceRenderer } from '../sequence/sequence-renderer.ts';
 import { GpuRendererError } from '../errors/gpu-renderer-error.ts';

@@ -18,10 +18,17 @@ export type BindGroupName = keyof typeof bindGroupIndices;
 export type BindingKind =
   | { kind: 'uniform'; type: string; dynamic?: boolean }
   | { kind: 'storage'; type: string; access: 'read' | 'read_write' }
-  | { kind: 'texture'; type: string; sampleType: GPUTextureSampleType; viewDimension: GPUTextureViewDimension };
+  | { kind: 'texture'; type: string; sampleType: GPUTextureSampleType; viewDimension?: GPUTextureViewDimension }
+  | { kind: 'sampler'; comparison?: boolean }
+  | { kind: 'storageTexture'; format: GPUTextureFormat };
 
-/** `group` is a bind group index (the path tracer uses bindGroupIndices). */
-export type BindingSpec = { group: number; binding: number; doc: string } & BindingKind;
+/**
+ * One binding of a binding table (every GPU program's tables use this shape). `group` is a bind
+ * group index (the path tracer uses bindGroupIndices); `visibility` (ShaderStage bits) is set where
+ * a table's bind group layouts are shared by programs of several stages, and otherwise the stage of
+ * the program the layout is built for.
+ */
+export type BindingSpec = { group: number; binding: number; doc: string; visibility?: number } & BindingKind;
 
 const G = bindGroupIndices;
 
@@ -45,20 +52,20 @@ export const pathTracerBindings = {
   // Group 3: transport state, per dispatch.
   paths: { group: G.transport, binding: 0, kind: 'storage', access: 'read_write', type: 'array<PathRecord>', doc: 'every path of the wave: state, next ray and its hit, pending shadow ray, sample' },
   queues: { group: G.transport, binding: 1, kind: 'storage', access: 'read_write', type: 'array<atomic<u32>>', doc: 'statistics, per-bounce queue lengths, then the ray and shadow queues (path slots)' },
-  film: { group: G.transport, binding: 7, kind: 'storage', access: 'read_write', type: 'array<vec4f>', doc: 'full-frame accumulation: radiance sum, sample count' },
-  filmAovs: { group: G.transport, binding: 11, kind: 'storage', access: 'read_write', type: 'array<vec4f>', doc: 'AOV sums per pixel: (albedo, depth), (normal, hits), (emission, squared luminance of the radiance without it)' },
+  film: { group: G.transport, binding: 7, kind: 'storage', access: 'read_write', type: 'array<FilmPixel>', doc: 'full-frame accumulation: radiance sum, sample count' },
+  filmAovs: { group: G.transport, binding: 11, kind: 'storage', access: 'read_write', type: 'array<FilmAovPixel>', doc: 'AOV sums per pixel' },
   wave: { group: G.transport, binding: 9, kind: 'uniform', dynamic: true, type: 'WaveUniforms', doc: 'per-wave constants' },
   bounce: { group: G.transport, binding: 10, kind: 'uniform', dynamic: true, type: 'BounceUniforms', doc: 'per-bounce constants' },
-  // Output (issue 9): film moments and ids, adaptive sampling, denoising. Minimal 16-byte buffers
-  // stand in where a feature is off.
-  filmMoments: { group: G.transport, binding: 16, kind: 'storage', access: 'read_write', type: 'array<vec4f>', doc: 'per pixel: (sum of even-indexed samples, their count), (sum of squared radiance, sum of squared luminance)' },
+  // Output: film moments and ids, adaptive sampling, denoising. A buffer of one record stands in
+  // where a feature is off.
+  filmMoments: { group: G.transport, binding: 16, kind: 'storage', access: 'read_write', type: 'array<FilmMoments>', doc: 'moment sums per pixel' },
   filmIds: { group: G.transport, binding: 17, kind: 'storage', access: 'read_write', type: 'array<u32>', doc: 'per pixel: 1 + instance index of the first sample that reached a non-specular hit (0: none)' },
   adaptive: { group: G.transport, binding: 18, kind: 'uniform', type: 'AdaptiveUniforms', doc: 'adaptive-sampling convergence constants' },
   adaptiveError: { group: G.transport, binding: 19, kind: 'storage', access: 'read_write', type: 'array<f32>', doc: 'per-pixel error estimate of the last convergence test' },
   adaptivePixels: { group: G.transport, binding: 20, kind: 'storage', access: 'read_write', type: 'array<atomic<u32>>', doc: 'counts (ADAPTIVE_* slots), then the indices of the pixels still sampling' },
   denoise: { group: G.transport, binding: 21, kind: 'uniform', type: 'DenoiseUniforms', doc: 'constants of one denoiser pass' },
   denoiseColor: { group: G.transport, binding: 22, kind: 'storage', access: 'read_write', type: 'array<vec4f>', doc: 'two halves: demodulated radiance and its luminance variance' },
-  denoiseGuide: { group: G.transport, binding: 23, kind: 'storage', access: 'read_write', type: 'array<vec4f>', doc: 'per pixel: (albedo, depth), (normal, coverage), (emission, 0)' },
+  denoiseGuide: { group: G.transport, binding: 23, kind: 'storage', access: 'read_write', type: 'array<DenoiseGuide>', doc: 'a-trous guides per pixel' },
   denoised: { group: G.transport, binding: 24, kind: 'storage', access: 'read_write', type: 'array<vec4f>', doc: 'denoised radiance (rgb, 1)' },
   denoiseEnergy: { group: G.transport, binding: 25, kind: 'storage', access: 'read_write', type: 'array<vec4f>', doc: 'a-trous energy: [0] the per-channel scale, then per 8x8 workgroup the raw and the filtered reflected radiance sums' },
 } as const satisfies Record<string, BindingSpec>;
@@ -71,12 +78,24 @@ export function bindingDeclaration(name: string, spec: BindingSpec): string {
   const comment = `// ${spec.doc}`;
   if (spec.kind === 'uniform') return `${comment}\n${at} var<uniform> ${name}: ${spec.type};`;
   if (spec.kind === 'storage') return `${comment}\n${at} var<storage, ${spec.access}> ${name}: ${spec.type};`;
+  if (spec.kind === 'sampler') return `${comment}\n${at} var ${name}: ${spec.comparison ? 'sampler_comparison' : 'sampler'};`;
+  if (spec.kind === 'storageTexture') return `${comment}\n${at} var ${name}: texture_storage_2d<${spec.format}, write>;`;
   return `${comment}\n${at} var ${name}: ${spec.type};`;
 }
 
-/** The WebGPU layout entry of one binding (compute visibility unless given). */
+/** The WebGPU layout entry of one binding (the spec's visibility, else `visibility`). */
 export function bindingLayoutEntry(spec: BindingSpec, visibility: number): GPUBindGroupLayoutEntry {
-  if (spec.kind === 'uniform') return { binding: spec.binding, visibility, buffer: { type: 'uniform', hasDynamicOffset: spec.dynamic === true } };
-  if (spec.kind === 'storage') return { binding: spec.binding, visibility, buffer: { type: spec.access === 'read' ? 'read-only-storage' : 'storage' } };
-  return { binding: spec.binding, visibility, texture: { sampleType: spec.sampleType, viewDimension: spec.viewDimension } };
+  const base = { binding: spec.binding, visibility: spec.visibility ?? visibility };
+  switch (spec.kind) {
+    case 'uniform':
+      return { ...base, buffer: { type: 'uniform', hasDynamicOffset: spec.dynamic === true } };
+    case 'storage':
+      return { ...base, buffer: { type: spec.access === 'read' ? 'read-only-storage' : 'storage' } };
+    case 'texture':
+      return { ...base, texture: { sampleType: spec.sampleType, viewDimension: spec.viewDimension ?? '2d' } };
+    case 'sampler':
+      return { ...base, sampler: { type: spec.comparison ? 'comparison' : 'filtering' } };
+    case 'storageTexture':
+      return { ...base, storageTexture: { access: 'write-only', format: spec.format, viewDimension: '2d' } };
+  }
 }

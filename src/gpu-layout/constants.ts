@@ -1,10 +1,8 @@
 /**
  * Constants shared by TypeScript and WGSL: the single definition of every slot number, flag bit,
  * kind id and size both sides must agree on. The `package::layout::constants` WGSL module is
- * generated from `gpuConstants` (see shaders/layout-modules.ts), so nothing is kept equal by comment.
+ * generated from `gpuConstants` (see scripts/shader-build/layout-modules.ts), so nothing is kept equal by comment.
  */
-import { mediumStackLimit } from '../transport/medium-stack.ts';
-import { fraunhoferLinesNm } from '../transport/spectral-samples.ts';
 
 /**
  * Statistics words at the head of the `queues` buffer (atomics in WGSL), read back per frame.
@@ -171,16 +169,24 @@ export const SHEEN_TABLE_NODES = 32;
 export const SPECTRAL_TABLE_NODES = 95;
 export const SPECTRAL_MIN_NM = 360;
 export const SPECTRAL_MAX_NM = 830;
-/** PathState.media holds MEDIUM_STACK_DEPTH 8-bit medium ids (the transport helpers' bound). */
-export const MEDIUM_STACK_DEPTH = mediumStackLimit;
+/**
+ * PathState.media holds MEDIUM_STACK_DEPTH 8-bit medium ids: one u32 of the path record, so a path
+ * nests at most four media. The CPU transport helpers (src/transport/medium-stack.ts) take their
+ * bound from here, so the reference and the kernels cannot disagree.
+ */
+export const MEDIUM_STACK_DEPTH = 4;
 /** Medium ids are 8-bit: at most this many refractive-solid materials per scene. */
 export const MAX_MEDIA = 255;
 /** PathState.flags: the f16 wavelength of a dispersive path sits above this shift. */
 export const PATH_WAVELENGTH_SHIFT = 16;
-/** The Fraunhofer F, D and C lines of KHR_materials_dispersion's Abbe number, in tenths of a nanometre. */
-export const FRAUNHOFER_F_TENTHS_NM = Math.round(fraunhoferLinesNm.F * 10);
-export const FRAUNHOFER_D_TENTHS_NM = Math.round(fraunhoferLinesNm.D * 10);
-export const FRAUNHOFER_C_TENTHS_NM = Math.round(fraunhoferLinesNm.C * 10);
+/**
+ * The Fraunhofer F, D and C lines (486.1, 587.6 and 656.3 nm) that define the Abbe number of
+ * KHR_materials_dispersion, in tenths of a nanometre (integers, as every generated WGSL constant
+ * is). src/transport/spectral-samples.ts derives its nanometre values from these.
+ */
+export const FRAUNHOFER_F_TENTHS_NM = 4861;
+export const FRAUNHOFER_D_TENTHS_NM = 5876;
+export const FRAUNHOFER_C_TENTHS_NM = 6563;
 
 /** TextureInfo.sampler bit fields. */
 export const SAMPLER_WRAP_REPEAT = 0;
@@ -200,7 +206,7 @@ export const SAMPLER_MIP_LINEAR = 1 << 7;
 export const LIGHT_KIND_TRIANGLE = 0;
 export const LIGHT_FLAG_DOUBLE_SIDED = 1;
 export const LIGHT_FLAG_TEXTURED = 2;
-// Lighting (issue 8): kinds inside the lights heap's records (see src/lighting/gpu-lighting.ts).
+// Lighting: kinds inside the lights heap's records (see src/lighting/gpu-lighting.ts).
 /** AreaLight.kind. */
 export const AREA_LIGHT_RECTANGLE = 0;
 export const AREA_LIGHT_DISK = 1;
@@ -231,8 +237,8 @@ export const SURFACE_FLAG_ESCAPED = 8;
 /** Fractional bits of the 64-bit fixed-point luminance tallies of the frame diagnostics. */
 export const LUMINANCE_FRACTION_BITS = 16;
 /**
- * Samples with a channel above this count as `legacyClampEquivalentSamples`: what the mirrored
- * package's legacy 4.0 clamp would have altered. Counted only; nothing is clamped.
+ * Samples with a channel above this count as `legacyClampEquivalentSamples`: what the 0.2
+ * API's legacy 4.0 clamp would have altered (a figure its hosts track). Counted only; nothing is clamped.
  */
 export const LEGACY_CLAMP_EQUIVALENT_RADIANCE = 4;
 

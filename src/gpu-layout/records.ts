@@ -280,7 +280,7 @@ export const lightRecordLayout: StructLayout = defineStructLayout('LightRecord',
   ['reserved', 'u32'],
 ]);
 
-// Lighting (issue 8). Every emitter and sampling table lives in the `lights` vec4 heap (loaders
+// Lighting. Every emitter and sampling table lives in the `lights` vec4 heap (loaders
 // generated below); src/lighting/gpu-lighting.ts packs it, src/lighting/*.wesl read it.
 
 /**
@@ -575,6 +575,45 @@ export const resolveUniformsLayout: StructLayout = defineStructLayout('ResolveUn
   ['reserved2', 'u32'],
 ]);
 
+// ---- Film (bind group 3, one record per pixel, row-major, top row first) ----------------------------
+// Sums over a pixel's samples: readers divide by FilmPixel.samples. These records are the film's
+// one layout: accumulate.wesl writes them, the adaptive test, the denoisers and the display read
+// them, and src/film/accumulation/readback.ts and the buffer plan size and read them on the CPU.
+
+/** One pixel of the film (the accumulation buffer). */
+export const filmPixelLayout: StructLayout = defineStructLayout('FilmPixel', 1, [
+  ['radiance', 'vec3f', 'sum of the radiance samples'],
+  ['samples', 'f32', 'how many samples the sum holds'],
+]);
+
+/** One pixel of the AOV film: what the pixel's samples saw at their first non-specular hit. */
+export const filmAovPixelLayout: StructLayout = defineStructLayout('FilmAovPixel', 1, [
+  ['albedo', 'vec3f', 'sum of the hit albedos'],
+  ['depth', 'f32', 'sum of the camera distances'],
+  ['normal', 'vec3f', 'sum of the shading normals'],
+  ['hits', 'f32', 'samples that reached a non-specular surface (coverage: hits / samples)'],
+  ['emission', 'vec3f', 'sum of the emission seen at the hit (the denoisers add it back unfiltered)'],
+  ['reflectedLuminanceSquared', 'f32', "sum of the squared luminance of the radiance without that emission (the a-trous filter's noise)"],
+]);
+
+/** One pixel of the film moments (adaptive sampling, the variance AOV, the denoiser). */
+export const filmMomentsLayout: StructLayout = defineStructLayout('FilmMoments', 1, [
+  ['evenRadiance', 'vec3f', "sum of the even-indexed samples (Cycles' half buffer)"],
+  ['evenSamples', 'f32', 'how many even-indexed samples'],
+  ['radianceSquared', 'vec3f', 'sum of the squared radiance'],
+  ['luminanceSquared', 'f32', 'sum of the squared luminance'],
+]);
+
+/** One pixel of the a-trous denoiser's guides: means over the samples, read by every filter pass. */
+export const denoiseGuideLayout: StructLayout = defineStructLayout('DenoiseGuide', 1, [
+  ['albedo', 'vec3f'],
+  ['depth', 'f32'],
+  ['normal', 'vec3f'],
+  ['coverage', 'f32', 'share of the samples that reached a non-specular surface'],
+  ['emission', 'vec3f', 'mean emission at the first non-specular hit'],
+  ['reserved0', 'f32'],
+]);
+
 // ---- Output: adaptive sampling and denoising (bind group 3, per pass) ------------------------------
 
 /** Constants of the adaptive-sampling convergence test (Cycles' stop criterion). */
@@ -599,7 +638,7 @@ export const denoiseUniformsLayout: StructLayout = defineStructLayout('DenoiseUn
   ['sigmaDepth', 'f32', 'depth edge-stopping, in depth-gradient units'],
 ]);
 
-/** One convolution of the OIDN network (src/post/denoise/oidn/conv.wesl). */
+/** One convolution of the OIDN network (src/film/denoise/oidn/conv.wesl). */
 export const oidnConvUniformsLayout: StructLayout = defineStructLayout('OidnConvUniforms', 1, [
   ['size', 'vec2u', 'resolution the convolution runs at (width, height)'],
   ['sourceA', 'u32', 'vec4 channel groups of the first source'],
@@ -610,7 +649,7 @@ export const oidnConvUniformsLayout: StructLayout = defineStructLayout('OidnConv
   ['blocks', 'u32', '16-channel output blocks (the weights hold blocks x 4 bias vec4s first)'],
 ]);
 
-/** One tile of the OIDN input, output and autoexposure passes (src/post/denoise/oidn/image.wesl). */
+/** One tile of the OIDN input, output and autoexposure passes (src/film/denoise/oidn/image.wesl). */
 export const oidnImageUniformsLayout: StructLayout = defineStructLayout('OidnImageUniforms', 1, [
   ['imageSize', 'vec2u'],
   ['tileOrigin', 'vec2u', 'image pixel of the tile tensor\'s pixel (0, 0)'],
@@ -670,6 +709,10 @@ export const wavefrontRecordLayouts = {
   WaveUniforms: waveUniformsLayout,
   BounceUniforms: bounceUniformsLayout,
   ResolveUniforms: resolveUniformsLayout,
+  FilmPixel: filmPixelLayout,
+  FilmAovPixel: filmAovPixelLayout,
+  FilmMoments: filmMomentsLayout,
+  DenoiseGuide: denoiseGuideLayout,
   AdaptiveUniforms: adaptiveUniformsLayout,
   DenoiseUniforms: denoiseUniformsLayout,
   OidnConvUniforms: oidnConvUniformsLayout,
@@ -690,7 +733,7 @@ function vertexBytesAllStreams(): number {
   return 4 * (VERTEX_POSITION_WORDS + VERTEX_NORMAL_WORDS + VERTEX_TANGENT_WORDS + VERTEX_COLOR_WORDS + 2 * VERTEX_UV_WORDS);
 }
 
-/** GPU record sizes in bytes (the mirrored package's "GPU record-size constants"). */
+/** GPU record sizes in bytes (public since the 0.2 API, so hosts can size buffers that hold these records). */
 export const rendererWavefrontRecordSizes = {
   pathState: pathStateLayout.size,
   shadowRay: shadowRayLayout.size,

@@ -1,5 +1,6 @@
 import { GpuRendererError } from '../errors/gpu-renderer-error.ts';
 import { describe } from '../errors/validate.ts';
+import { isNodeRuntime, nodeModule } from '../io/platform.ts';
 
 export interface AcquireGpuDeviceOptions {
   /** Share an existing device instead of creating one. */
@@ -28,17 +29,14 @@ let nodeGpu: Promise<GPU | undefined> | undefined;
 export function getGpu(): Promise<GPU | undefined> {
   const nav = (globalThis as { navigator?: { gpu?: GPU } }).navigator;
   if (nav?.gpu) return Promise.resolve(nav.gpu);
-  const isNode = typeof process !== 'undefined' && typeof process.versions?.node === 'string';
-  if (!isNode) return Promise.resolve(undefined);
+  if (!isNodeRuntime()) return Promise.resolve(undefined);
   nodeGpu ??= loadDawn();
   return nodeGpu;
 }
 
 async function loadDawn(): Promise<GPU | undefined> {
-  // A variable specifier keeps bundlers from trying to resolve the Node-only package.
-  const specifier = 'webgpu';
   try {
-    const dawn = (await import(specifier)) as { create: (flags: string[]) => GPU; globals: Record<string, unknown> };
+    const dawn = await nodeModule<{ create: (flags: string[]) => GPU; globals: Record<string, unknown> }>('webgpu');
     for (const [key, value] of Object.entries(dawn.globals)) {
       if (!(key in globalThis)) (globalThis as Record<string, unknown>)[key] = value;
     }
@@ -86,7 +84,7 @@ export async function acquireGpuDevice(options: AcquireGpuDeviceOptions = {}): P
   if (!gpu) throw new GpuRendererError('WEBGPU_UNAVAILABLE', 'WebGPU is not available in this environment (no navigator.gpu and no Dawn).');
   const adapter = await gpu.requestAdapter(options.powerPreference ? { powerPreference: options.powerPreference } : undefined);
   if (!adapter) throw new GpuRendererError('WEBGPU_UNAVAILABLE', 'No WebGPU adapter is available.');
-  // shader-f16: the OIDN denoiser's half-precision network (src/post/denoise/oidn).
+  // shader-f16: the OIDN denoiser's half-precision network (src/film/denoise/oidn).
   const wanted = options.optionalFeatures ?? ['timestamp-query', 'shader-f16'];
   const requiredFeatures = wanted.filter((f) => adapter.features.has(f));
   // Ask for the adapter's own storage limits: scenes are bounded by what the device really offers.

@@ -23,9 +23,8 @@ import type * as NodeUrl from 'node:url';
 import { GpuRendererError, type GpuRendererErrorCode } from '../errors/gpu-renderer-error.ts';
 import { describe } from '../errors/validate.ts';
 import { decodeDataUri } from './data-uri.ts';
-import { fetchBytes, isNodeRuntime, nodeModule, readLocalFile } from './resource-read.ts';
-
-export { isNodeRuntime };
+import { isNodeRuntime, nodeModule } from './platform.ts';
+import { fetchBytes, readLocalFile } from './resource-read.ts';
 
 /** The `resourcePolicy` option of every loader. */
 export interface ResourcePolicy {
@@ -282,6 +281,22 @@ export async function readSource(url: URL, policy: ResolvedResourcePolicy, site:
     refuse(site, `${url.href} lies outside the resource policy's root ${policy.root.href}`);
   }
   return readLocation(url, policy.root !== undefined && !isAllowedOrigin(url, policy) ? policy.root : undefined, policy, site, signal, url, url.protocol === 'file:' ? undefined : url.href);
+}
+
+/** What the loaders accept as a file: a path (Node), a URL (fetched), or the file's bytes. */
+export type ByteSource = string | URL | ArrayBuffer | Uint8Array;
+
+/**
+ * The one "read a path or URL" step of every loader: bytes are taken as they are; a path or URL
+ * is located (`locateSource`) and read under the policy (`readSource`). `url` is where the bytes
+ * came from (relative references resolve against it), undefined for bytes.
+ */
+export async function readByteSource(source: ByteSource, policy: ResolvedResourcePolicy, site: ResourceSite, signal?: AbortSignal): Promise<{ bytes: Uint8Array; url: URL | undefined }> {
+  if (source instanceof Uint8Array) return { bytes: source, url: undefined };
+  if (source instanceof ArrayBuffer) return { bytes: new Uint8Array(source), url: undefined };
+  if (typeof source !== 'string' && !(source instanceof URL)) refuse(site, `expected a path, a URL, an ArrayBuffer or a Uint8Array, got ${describe(source)}`);
+  const url = await locateSource(source, site);
+  return { bytes: await readSource(url, policy, site, signal), url };
 }
 
 /** Reads what an asset at `asset` names by `uri`, under the policy (see `resolveReference`). */

@@ -8,16 +8,8 @@ import type * as NodeFsPromises from 'node:fs/promises';
 import type * as NodePath from 'node:path';
 import type * as NodeUrl from 'node:url';
 import { GpuRendererError } from '../errors/gpu-renderer-error.ts';
+import { isNodeRuntime, nodeModule } from './platform.ts';
 import type { ResolvedResourcePolicy, ResourceSite } from './resource-policy.ts';
-
-export function isNodeRuntime(): boolean {
-  return typeof process !== 'undefined' && typeof process.versions?.node === 'string';
-}
-
-/** A Node built-in through a variable specifier, so browser bundlers never resolve it. */
-export async function nodeModule<T>(specifier: string): Promise<T> {
-  return (await import(specifier)) as T;
-}
 
 function refuse(site: ResourceSite, message: string, cause?: unknown): never {
   throw new GpuRendererError(site.code, message, cause === undefined ? { field: site.field } : { field: site.field, cause });

@@ -20,7 +20,7 @@ import { decodeImage } from './gltf/image-decoding.ts';
 import { resolveGltfReferences } from './gltf/scene-file-references.ts';
 import { checkImageHeader } from './image-headers.ts';
 import { JSON_BYTES_PER_VALUE, MAX_JSON_DEPTH, scanJson } from './json-scan.ts';
-import { budgetOf, derivePolicy, locateSource, readReference, readSource, resolveResourcePolicy, type ResourcePolicy } from './resource-policy.ts';
+import { budgetOf, derivePolicy, locateSource, readByteSource, readReference, resolveResourcePolicy, type ResourcePolicy } from './resource-policy.ts';
 
 /** A resolved scene: the description plus, when its environment names a map file, that map. */
 export type WavefrontResolvedScene = WavefrontSceneDescription & { environmentMap?: EnvironmentMapInput };
@@ -141,10 +141,9 @@ function acceptSceneFile(scene: WavefrontResolvedScene): void {
 export async function loadSceneFile(source: string | URL, options: Omit<ResolveSceneFileOptions, 'base'> = {}): Promise<ResolvedSceneFile> {
   const site = { code: 'INVALID_SCENE_FILE', field: 'scene' } as const;
   if (typeof source !== 'string' && !(source instanceof URL)) throw new GpuRendererError('INVALID_OPTION', `expected a path or a URL, got ${source === null ? 'null' : typeof source}`, { field: 'source' });
-  const url = await locateSource(source, site);
   const resolved = await resolveResourcePolicy(options.resourcePolicy);
   const policy = derivePolicy(resolved, { budget: budgetOf(resolved) });
-  const bytes = await readSource(url, policy, site, options.signal);
+  const { bytes, url } = await readByteSource(source, policy, site, options.signal);
   const shape = scanJson(bytes);
   if (shape.depth > MAX_JSON_DEPTH) throw new GpuRendererError('INVALID_SCENE_FILE', `the JSON nests ${shape.depth} levels deep; the loader reads at most ${MAX_JSON_DEPTH}`, { field: 'scene' });
   policy.budget!.charge(shape.values * JSON_BYTES_PER_VALUE, site, `parsing the JSON's ${shape.values} values`);
@@ -152,7 +151,7 @@ export async function loadSceneFile(source: string | URL, options: Omit<ResolveS
   try {
     text = new TextDecoder('utf-8', { fatal: true }).decode(bytes);
   } catch (error) {
-    throw new GpuRendererError('INVALID_SCENE_FILE', `${url.href} is not UTF-8 text`, { field: 'scene', cause: error });
+    throw new GpuRendererError('INVALID_SCENE_FILE', `${url!.href} is not UTF-8 text`, { field: 'scene', cause: error });
   }
   return resolveSceneFile(parseSceneFile(text, String(source)), { ...options, base: url, resourcePolicy: policy });
 }

@@ -1,7 +1,7 @@
 import { GpuRendererError } from '../errors/gpu-renderer-error.ts';
 import { describe, fail, requireFiniteNumber, requireInteger } from '../errors/validate.ts';
 import { directionToEquirectUv } from './equirect.ts';
-import { halfToFloat } from './half-float.ts';
+import { halfBitsToFloat32 } from '../math/half-float.ts';
 import type { Vec3 } from './vec3.ts';
 import { requireKnownKeys } from './known-keys.ts';
 import { maxRadiance } from '../scene/limits.ts';
@@ -63,7 +63,7 @@ export function validateEnvironmentMap(input: unknown, field = 'environmentMap')
   let brightest = 0;
   for (let t = 0; t < width * height; t++) {
     for (let c = 0; c < 3; c++) {
-      const v = isHalf ? halfToFloat(raw[4 * t + c]!) : raw[4 * t + c]!;
+      const v = isHalf ? halfBitsToFloat32(raw[4 * t + c]!) : raw[4 * t + c]!;
       if (!Number.isFinite(v) || v < 0) {
         throw new GpuRendererError(
           code,

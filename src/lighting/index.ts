@@ -12,8 +12,9 @@ export {
   type EnvironmentSampler,
   type EnvironmentSample,
 } from './environment-sampling.ts';
-export { decodeRadianceHdr, isRadianceHdr, type DecodedHdrImage } from './radiance-hdr.ts';
-export { decodeOpenExr, isOpenExr, type DecodeOpenExrOptions, type ExrLoaderLike, type ExrLoaderConstructor } from './openexr.ts';
+// The HDR and OpenEXR readers live in src/io/images; re-exported here, where they were first published.
+export { decodeRadianceHdr, isRadianceHdr, type DecodedHdrImage } from '../io/images/radiance-hdr.ts';
+export { decodeOpenExr, isOpenExr, type DecodeOpenExrOptions, type ExrLoaderLike, type ExrLoaderConstructor } from '../io/images/openexr.ts';
 export { loadEnvironmentMap, type EnvironmentMapSource, type LoadEnvironmentMapOptions, type NegativeTexelReport } from './load-environment-map.ts';
 export type { WavefrontAreaLightInput, WavefrontRectangleLightInput, WavefrontDiskLightInput, WavefrontSphereLightInput } from './light-types.ts';
 export {

@@ -1,19 +1,19 @@
 import { GpuRendererError } from '../errors/gpu-renderer-error.ts';
 import { describe } from '../errors/validate.ts';
-import { budgetOf, derivePolicy, locateSource, readSource, resolveResourcePolicy, type ResourcePolicy } from '../io/resource-policy.ts';
-import { validateEnvironmentMap, type EnvironmentMap } from './environment-map.ts';
-import { decodeOpenExr, isOpenExr, type ExrLoaderConstructor } from './openexr.ts';
-import { decodeRadianceHdr, isRadianceHdr } from './radiance-hdr.ts';
+import { budgetOf, derivePolicy, readByteSource, resolveResourcePolicy, type ByteSource, type ResourcePolicy } from '../io/resource-policy.ts';
+import { decodeOpenExr, isOpenExr, type ExrLoaderConstructor } from '../io/images/openexr.ts';
+import { decodeRadianceHdr, isRadianceHdr } from '../io/images/radiance-hdr.ts';
+import { MAX_ENVIRONMENT_MAP_DIMENSION, validateEnvironmentMap, type EnvironmentMap } from './environment-map.ts';
 
 /** Where an environment map comes from: a file path (Node), a URL (fetched), or the file's bytes. */
-export type EnvironmentMapSource = string | URL | ArrayBuffer | Uint8Array;
+export type EnvironmentMapSource = ByteSource;
 
 export interface LoadEnvironmentMapOptions {
   /** Radiance multiplier, default 1. */
   intensity?: number;
   /** Rotation about +Y in radians, default 0. */
   rotationRadians?: number;
-  /** three.js's EXRLoader class, for bundled browser apps (see openexr.ts); Node imports it itself. */
+  /** three.js's EXRLoader class, for bundled browser apps (see src/io/images/openexr.ts); Node imports it itself. */
   EXRLoader?: ExrLoaderConstructor;
   /** Name used in error fields, default 'source'. */
   field?: string;
@@ -89,14 +89,14 @@ export async function loadEnvironmentMap(source: EnvironmentMapSource, options: 
   const { signal } = options;
   signal?.throwIfAborted();
   const site = { code: 'INVALID_ENVIRONMENT', field } as const;
-  let bytes: Uint8Array;
-  if (source instanceof Uint8Array) bytes = source;
-  else if (source instanceof ArrayBuffer) bytes = new Uint8Array(source);
-  else bytes = await readSource(await locateSource(source, site), derivePolicy(resourcePolicy, { budget }), site, signal);
+  const { bytes } = await readByteSource(source, derivePolicy(resourcePolicy, { budget }), site, signal);
   let image;
-  if (isRadianceHdr(bytes)) image = decodeRadianceHdr(bytes, field, budget);
-  else if (isOpenExr(bytes)) image = await decodeOpenExr(bytes, field, options.EXRLoader, { budget, decodeTimeoutMs: resourcePolicy.decodeTimeoutMs, ...(signal ? { signal } : {}) });
+  const maxImageDimension = MAX_ENVIRONMENT_MAP_DIMENSION;
+  if (isRadianceHdr(bytes)) image = decodeRadianceHdr(bytes, { field, code: 'INVALID_ENVIRONMENT', budget, maxImageDimension, limitName: 'map side' });
+  else if (isOpenExr(bytes)) image = await decodeOpenExr(bytes, field, options.EXRLoader, { budget, maxImageDimension, decodeTimeoutMs: resourcePolicy.decodeTimeoutMs, ...(signal ? { signal } : {}) });
   else throw new GpuRendererError('INVALID_ENVIRONMENT', 'not a Radiance .hdr ("#?" header) or OpenEXR file', { field });
+  // The validated map's copy of the texels.
+  budget.charge(image.width * image.height * 16, site, `the ${image.width} x ${image.height} environment map`);
   // The decoded texels are this call's own: zeroed in place (validation copies them anyway).
   if (negative === 'zero') {
     // Zeroed whether or not anyone asks for the report (`f?.(g())` would skip g without f).

@@ -1,12 +1,9 @@
 import { pathTracerBindings } from '../gpu-layout/bindings.ts';
-import { bounceUniformsLayout, waveUniformsLayout } from '../gpu-layout/records.ts';
-import type { IntegratorKernelSet, KernelPipeline, ProgramLayout, WavefrontKernelName } from './pipelines.ts';
+import type { KernelPipeline } from '../shaders/program-pipelines.ts';
+import { createProgramBindGroups, dynamicSizes, type PathTracerResourceMap } from '../shaders/program-bind-groups.ts';
+import type { IntegratorKernelSet, WavefrontKernelName } from './pipelines.ts';
 
-/** The GPU resource behind every binding name of the path tracer. */
-export type PathTracerResourceMap = Record<string, GPUBuffer | GPUTextureView>;
-
-/** Sizes of the dynamic-offset uniform windows (one record each). */
-const dynamicSizes: Record<string, number> = { wave: waveUniformsLayout.size, bounce: bounceUniformsLayout.size };
+export type { PathTracerResourceMap };
 
 export interface KernelBindGroups {
   pipeline: GPUComputePipeline;
@@ -16,23 +13,6 @@ export interface KernelBindGroups {
   dynamic: string[][];
 }
 
-function resourceOf(resources: PathTracerResourceMap, name: string): GPUBindingResource {
-  const r = resources[name];
-  if (!r) throw new Error(`no resource for binding ${name}`);
-  if ('mapAsync' in r) return dynamicSizes[name] !== undefined ? { buffer: r, size: dynamicSizes[name] } : { buffer: r };
-  return r;
-}
-
-/** Bind groups matching a program's explicit layouts, from a name -> resource map. */
-export function createProgramBindGroups(device: GPUDevice, layout: ProgramLayout, resources: PathTracerResourceMap, bindingOf: (name: string) => number, label: string): GPUBindGroup[] {
-  return layout.groups.map((groupLayout, g) =>
-    device.createBindGroup({
-      label: `${label}.group${g}`,
-      layout: groupLayout,
-      entries: layout.bindingsByGroup[g]!.map((name) => ({ binding: bindingOf(name), resource: resourceOf(resources, name) })),
-    }),
-  );
-}
 
 export function createKernelBindGroups(device: GPUDevice, kernels: IntegratorKernelSet<KernelPipeline>, resources: PathTracerResourceMap): IntegratorKernelSet<KernelBindGroups> {
   const bindingOf = (name: string): number => pathTracerBindings[name as keyof typeof pathTracerBindings].binding;

@@ -12,6 +12,10 @@ import {
   resolveUniformsLayout,
   adaptiveUniformsLayout,
   denoiseUniformsLayout,
+  denoiseGuideLayout,
+  filmAovPixelLayout,
+  filmMomentsLayout,
+  filmPixelLayout,
 } from '../gpu-layout/records.ts';
 import type { PathTracerBindingName } from '../gpu-layout/bindings.ts';
 
@@ -40,7 +44,7 @@ export interface BufferPlanInput {
   wavePaths: number;
   maxDepth: number;
   aovs: boolean;
-  /** Output features that size full-frame buffers (issue 9); all false keeps them minimal. */
+  /** Output features that size full-frame buffers; all false keeps them minimal. */
   output?: { moments: boolean; adaptive: boolean; denoise: boolean; atrous?: boolean };
   /** Frames whose statistics may be in flight at once (one timestamp pair each); default 1. */
   framesInFlight?: number;
@@ -92,16 +96,16 @@ export function planBuffers(i: BufferPlanInput): Record<PlannedBufferName, Plann
     queues: queue(waveBufferBytes(capacity).queues, 'the statistics and queues'),
     wave: queue((i.wavesPerSubmission ?? maxWavesPerSubmission) * dynamicUniformStride, 'the wave constants'),
     bounce: queue((i.maxDepth + 1) * dynamicUniformStride, 'the bounce constants'),
-    film: frame(pixels * 16, 'the accumulation buffer (width x height)'),
-    filmAovs: frame((i.aovs ? pixels : 1) * 48, 'the AOV accumulation (width x height)'),
-    filmMoments: frame(perPixel(out.moments, 2) * 16, 'the film moments (width x height)'),
+    film: frame(pixels * filmPixelLayout.size, 'the accumulation buffer (width x height)'),
+    filmAovs: frame(perPixel(i.aovs) * filmAovPixelLayout.size, 'the AOV accumulation (width x height)'),
+    filmMoments: frame(perPixel(out.moments) * filmMomentsLayout.size, 'the film moments (width x height)'),
     filmIds: frame(perPixel(i.aovs) * 4, 'the id AOV (width x height)'),
     adaptive: frame(adaptiveUniformsLayout.size, 'the adaptive-sampling constants'),
     adaptiveError: frame(perPixel(out.adaptive) * 4, 'the adaptive-sampling errors (width x height)'),
     adaptivePixels: frame((adaptiveListSlots.listStart + (out.adaptive ? pixels : 0)) * 4, 'the active-pixel list (width x height)'),
     denoise: frame(denoiseUniformsLayout.size, 'the denoiser input constants'),
     denoiseColor: frame(perPixel(out.atrous ?? out.denoise, 2) * 16, 'the a-trous ping-pong buffers (width x height)'),
-    denoiseGuide: frame(perPixel(out.atrous ?? out.denoise, 3) * 16, 'the a-trous guides (width x height)'),
+    denoiseGuide: frame(perPixel(out.atrous ?? out.denoise) * denoiseGuideLayout.size, 'the a-trous guides (width x height)'),
     denoised: frame(perPixel(out.denoise) * 16, 'the denoised image (width x height)'),
     denoiseEnergy: frame((out.atrous ?? out.denoise ? 1 + 2 * Math.ceil(i.width / 8) * Math.ceil(i.height / 8) : 1) * 16, 'the a-trous energy sums (width x height / 64)'),
     displayUniforms: frame(resolveUniformsLayout.size, 'the display constants'),

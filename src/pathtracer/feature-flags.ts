@@ -1,5 +1,5 @@
 /**
- * `featureFlags`: the mirrored package's rollout flags, accepted by their names so hosts written for
+ * `featureFlags`: the rollout flags of the 0.2 API, accepted by their names so hosts written for
  * it keep working, and reported honestly. This renderer's transport is physically based and
  * unbiased by construction, so a flag asking for that is reported as requested and effective; a
  * flag that would turn it off (and add bias) is refused with `BIASED_TRANSPORT_REFUSED`; the Product
@@ -57,7 +57,7 @@ export interface WavefrontTransportExperimentState {
 }
 
 export interface WavefrontFeatureFlagResolution {
-  /** Every known flag by its mirrored name. */
+  /** Every known flag by its 0.2 API name. */
   featureFlags: Readonly<Record<string, WavefrontFeatureFlagState>>;
   transportExperiments: Readonly<Record<TransportExperimentName, WavefrontTransportExperimentState>>;
   /** Effective experiments, bit i = entry i of transportExperimentNames. */
@@ -69,7 +69,7 @@ export interface WavefrontFeatureFlagResolution {
 /** Every flag name `featureFlags` accepts. */
 export const featureFlagNames: readonly string[] = Object.freeze([...physicalTransportFlagNames, denoiseIndependenceFlagName, ...Object.values(transportExperimentNames)]);
 
-/** Validates `featureFlags` (an object of booleans by mirrored name) and resolves every flag's state. */
+/** Validates `featureFlags` (an object of booleans by 0.2 API name) and resolves every flag's state. */
 export function resolveFeatureFlags(input: unknown): WavefrontFeatureFlagResolution {
   const given: Record<string, boolean> = {};
   if (input !== undefined) {

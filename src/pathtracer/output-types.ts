@@ -1,71 +1,12 @@
 /**
- * Public types of the production-output surface (issue 9): adaptive sampling, the denoiser,
- * presentation, progress events and the mirrored frame diagnostics.
+ * Public types of the production-output surface: adaptive sampling, the denoiser,
+ * presentation, progress events and the frame diagnostics hosts of the 0.2 API read.
  */
-import type { WavefrontDenoiserName } from '../post/denoise/denoiser.ts';
+export type { WavefrontDenoiseOptions, WavefrontDenoiseSettings } from '../film/denoise/settings.ts';
+export type { WavefrontAdaptiveSettings } from '../film/adaptive/settings.ts';
+import type { WavefrontDenoiseSettings } from '../film/denoise/settings.ts';
+import type { WavefrontAdaptiveSettings } from '../film/adaptive/settings.ts';
 import type { TransportExperimentName, WavefrontFeatureFlagState, WavefrontTransportExperimentState } from './feature-flags.ts';
-
-/**
- * Options of the denoiser (`denoise: true`, `'oidn'` or `'atrous'` take every default). The
- * à-trous options imply `denoiser: 'atrous'`, the OIDN options `denoiser: 'oidn'`; mixing them is
- * an error.
- */
-export interface WavefrontDenoiseOptions {
-  /**
-   * 'oidn': Open Image Denoise's U-Net on the GPU (production quality); 'atrous': the edge-avoiding
-   * à-trous filter (a fast preview); 'auto' (default): the better one the device runs ('oidn' on any
-   * WebGPU device that meets the core limits).
-   */
-  denoiser?: WavefrontDenoiserName | 'auto';
-  /** What readPixels and the canvas show: 'denoised' (default) or 'raw'. */
-  present?: 'denoised' | 'raw';
-  /** A-trous passes, taps 1, 2, 4, ... pixels apart; 1..8, default 5 (a 125-pixel footprint). */
-  iterations?: number;
-  /** Luminance edge-stopping in standard deviations of the pixel noise (SVGF sigma_l); > 0, default 2. */
-  sigmaLuminance?: number;
-  /** Normal edge-stopping exponent (SVGF sigma_n); >= 0, default 128. */
-  sigmaNormal?: number;
-  /** Depth edge-stopping in depth-gradient units (SVGF sigma_z); > 0, default 1. */
-  sigmaDepth?: number;
-  /** OIDN: guide the network with the albedo and normal AOVs (weights rt_hdr_alb_nrm; default true) or not (rt_hdr). */
-  auxiliary?: boolean;
-  /** OIDN: 'f16' (needs the device feature shader-f16), 'f32', or 'auto' (default: f16 where the device has it). */
-  precision?: 'auto' | 'f16' | 'f32';
-  /**
-   * OIDN: 'exact' (default): the emission seen at the first non-specular hit (emitters seen directly
-   * or through mirrors: exact, noise-free but for anti-aliasing) bypasses the network and is added
-   * back unchanged, so the network neither blurs nor brightens bright emitters' edges; 'network':
-   * the network denoises the whole beauty, as OIDN's own API does.
-   */
-  emission?: 'exact' | 'network';
-  /** OIDN: memory budget of the network's tensors in MiB (tiles shrink to fit); default 1024. */
-  maxMemoryMB?: number;
-  /** OIDN: your own weights, the bytes of an OIDN `.tza` of an HDR `RT` model (e.g. rt_hdr_calb_cnrm_large). */
-  weights?: ArrayBuffer | ArrayBufferView;
-}
-
-/** The denoiser a renderer runs, with every option resolved ('auto' only before the renderer exists). */
-export interface WavefrontDenoiseSettings {
-  denoiser: WavefrontDenoiserName | 'auto';
-  present: 'denoised' | 'raw';
-  /** A-trous settings (used when denoiser is 'atrous'). */
-  iterations: number;
-  sigmaLuminance: number;
-  sigmaNormal: number;
-  sigmaDepth: number;
-  /** OIDN settings (used when denoiser is 'oidn'). */
-  auxiliary: boolean;
-  precision: 'auto' | 'f16' | 'f32';
-  emission: 'exact' | 'network';
-  maxMemoryMB: number;
-  /** The OIDN weights: 'rt_hdr_alb_nrm', 'rt_hdr' or 'custom' (given as `weights`). */
-  weights: string;
-}
-
-export interface WavefrontAdaptiveSettings {
-  threshold: number;
-  minimumSamplesPerPixel: number;
-}
 
 export type WavefrontPresentationOutput = 'tonemapped' | 'linear';
 
@@ -115,7 +56,7 @@ export interface WavefrontAdaptiveFrameStats {
  * Where the frame's radiance came from, as mean luminance (Rec. 709) per pixel sample. Terminal
  * sources are emitter hits (camera and BSDF-sampled rays, MIS-weighted) and escaped paths (the
  * environment); next-event estimation is the rest. This renderer adds no ambient term, so the
- * ambient residual fields of the mirrored API are always 0.
+ * ambient residual fields (kept for hosts of the 0.2 API) are always 0.
  */
 export interface WavefrontTerminalRadiance {
   /** Every contribution: emitter + environment + directLight. */
@@ -137,7 +78,7 @@ export interface WavefrontRadianceDiagnostics {
   invalidSamples: number;
   /** Contributions dropped as NaN, Inf or negative. */
   invalidContributions: number;
-  /** Samples with a channel above 4: what the mirrored package's legacy 4.0 clamp would have altered (nothing is clamped). */
+  /** Samples with a channel above 4: what the 0.2 API's legacy 4.0 clamp would have altered (nothing is clamped). */
   legacyClampEquivalentSamples: number;
 }
 

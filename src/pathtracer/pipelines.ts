@@ -1,13 +1,11 @@
 import { GpuRendererError } from '../errors/gpu-renderer-error.ts';
-import { bindingLayoutEntry, pathTracerBindings, type BindingSpec } from '../gpu-layout/bindings.ts';
-import { ShaderStage } from '../gpu/webgpu-constants.ts';
-import { oidnBindings } from '../post/denoise/oidn/bindings.ts';
+import { pathTracerBindings } from '../gpu-layout/bindings.ts';
 import { displayBindings } from '../shaders/display-bindings.ts';
-import { bvhBuildBindings } from '../accel/gpu-build/bindings.ts';
 import type { ShaderFeatures } from '../shaders/features.ts';
-import type { PathTracingIntegrator } from './types.ts';
+import { computePipeline, type KernelPipeline } from '../shaders/program-pipelines.ts';
 import { generatedPrograms } from '../shaders/programs.generated.ts';
-import { programSpecs, type ProgramName } from '../shaders/programs.ts';
+import type { ProgramName } from '../shaders/programs.ts';
+import type { PathTracingIntegrator } from './types.ts';
 
 /** The compute kernels of a wave, with the program and entry point of each. */
 export const wavefrontKernels = {
@@ -29,30 +27,14 @@ export const integratorKernels = {
 /** Pipelines or bind groups of the kernels an integrator dispatches. */
 export type IntegratorKernelSet<T> = Partial<Record<WavefrontKernelName, T>>;
 
-export interface ProgramLayout {
-  /** Bind group layouts by group index (empty layouts fill unused lower groups). */
-  groups: GPUBindGroupLayout[];
-  /** The program's bindings, by group index. */
-  bindingsByGroup: string[][];
-  layout: GPUPipelineLayout;
-}
-
-export interface KernelPipeline extends ProgramLayout {
-  pipeline: GPUComputePipeline;
-}
-
 export interface PathTracerPipelines {
   kernels: IntegratorKernelSet<KernelPipeline>;
   resolve: KernelPipeline;
 }
 
-const tables: Record<string, Record<string, BindingSpec>> = { pathTracer: pathTracerBindings, display: displayBindings, bvhBuild: bvhBuildBindings, oidn: oidnBindings };
-const programTable = Object.fromEntries(Object.entries(programSpecs).map(([name, spec]) => [name, spec.bindings])) as Record<ProgramName, string>;
-
-/** Storage buffers a program binds in one shader stage (compute). */
+/** Storage buffers a path tracer program binds in its one (compute) stage. */
 function storageBufferCount(program: ProgramName): number {
-  const table = tables[programTable[program]]!;
-  return generatedPrograms[program].bindings.filter((name) => table[name]!.kind === 'storage').length;
+  return generatedPrograms[program].bindings.filter((name) => pathTracerBindings[name as keyof typeof pathTracerBindings].kind === 'storage').length;
 }
 
 /** Refuses an integrator whose kernels bind more storage buffers than the device offers per stage. */
@@ -69,76 +51,10 @@ export function checkIntegratorLimits(integrator: PathTracingIntegrator, limits:
   }
 }
 
-/** Explicit bind group layouts for exactly the bindings a program's linked WGSL declares. */
-export function programLayout(device: GPUDevice, program: ProgramName, visibility: number = ShaderStage.COMPUTE): ProgramLayout {
-  const table = tables[programTable[program]]!;
-  const names = generatedPrograms[program].bindings;
-  const byGroup: string[][] = [];
-  for (const name of names) {
-    const spec = table[name]!;
-    (byGroup[spec.group] ??= []).push(name);
-  }
-  for (let g = 0; g < byGroup.length; g++) byGroup[g] ??= [];
-  const groups = byGroup.map((group, g) =>
-    device.createBindGroupLayout({
-      label: `${program}.group${g}`,
-      entries: group.map((name) => bindingLayoutEntry(table[name]!, visibility)).sort((a, b) => a.binding - b.binding),
-    }),
-  );
-  return { groups, bindingsByGroup: byGroup, layout: device.createPipelineLayout({ label: program, bindGroupLayouts: groups }) };
-}
-
-const modules = new WeakMap<GPUDevice, Map<ProgramName, Promise<GPUShaderModule>>>();
-
-/** The program's shader module, compiled once per device; WGSL errors become typed errors. */
-export function programModule(device: GPUDevice, program: ProgramName): Promise<GPUShaderModule> {
-  let perDevice = modules.get(device);
-  if (!perDevice) modules.set(device, (perDevice = new Map()));
-  let module = perDevice.get(program);
-  if (!module) {
-    const code = generatedPrograms[program].wgsl;
-    module = (async () => {
-      const m = device.createShaderModule({ code, label: program });
-      const info = await m.getCompilationInfo();
-      const errors = info.messages.filter((e) => e.type === 'error');
-      if (errors.length > 0) {
-        const lines = code.split('\n');
-        const detail = errors.map((e) => `${program}:${e.lineNum}:${e.linePos} ${e.message} | ${lines[e.lineNum - 1]?.trim() ?? ''}`).join('\n');
-        throw new GpuRendererError('SHADER_COMPILATION_FAILED', `WGSL compilation failed:\n${detail}`);
-      }
-      return m;
-    })();
-    module.catch(() => perDevice.delete(program));
-    perDevice.set(program, module);
-  }
-  return module;
-}
-
-/** The override constants a program declares, from the feature set. */
-export function overrideConstants(program: ProgramName, features: ShaderFeatures): Record<string, number> {
-  const out: Record<string, number> = {};
-  for (const name of generatedPrograms[program].overrides) {
-    if (!(name in features)) throw new Error(`program ${program} declares override ${name}, which is no shader feature`);
-    out[name] = features[name as keyof ShaderFeatures] ? 1 : 0;
-  }
-  return out;
-}
-
 const pipelineCache = new WeakMap<GPUDevice, Map<string, Promise<PathTracerPipelines>>>();
 
 export function featureKey(features: ShaderFeatures): string {
   return Object.entries(features).map(([k, v]) => `${k}=${v ? 1 : 0}`).join(',');
-}
-
-export async function computePipeline(device: GPUDevice, program: ProgramName, entryPoint: string, features: ShaderFeatures): Promise<KernelPipeline> {
-  const layout = programLayout(device, program);
-  const module = await programModule(device, program);
-  const pipeline = await device.createComputePipelineAsync({
-    label: `${program}.${entryPoint}`,
-    layout: layout.layout,
-    compute: { module, entryPoint, constants: overrideConstants(program, features) },
-  });
-  return { ...layout, pipeline };
 }
 
 async function createPipelines(device: GPUDevice, features: ShaderFeatures, integrator: PathTracingIntegrator): Promise<PathTracerPipelines> {
@@ -149,10 +65,10 @@ async function createPipelines(device: GPUDevice, features: ShaderFeatures, inte
     const entries = await Promise.all(
       integratorKernels[integrator].map(async (name) => {
         const k = wavefrontKernels[name];
-        return [name, await computePipeline(device, k.program, k.entryPoint, features)] as const;
+        return [name, await computePipeline(device, pathTracerBindings, k.program, k.entryPoint, features)] as const;
       }),
     );
-    const resolve = await computePipeline(device, 'resolve', 'resolve_pixels', features);
+    const resolve = await computePipeline(device, displayBindings, 'resolve', 'resolve_pixels', features);
     pipelines = { kernels: Object.fromEntries(entries) as IntegratorKernelSet<KernelPipeline>, resolve };
   } catch (error) {
     failure = error;
@@ -178,16 +94,3 @@ export function pathTracerPipelines(device: GPUDevice, features: ShaderFeatures,
   return p;
 }
 
-/** Render pipeline drawing the display resolve into a canvas texture of `format`. */
-export async function createPresentPipeline(device: GPUDevice, format: GPUTextureFormat): Promise<{ pipeline: GPURenderPipeline; layout: ProgramLayout }> {
-  const layout = programLayout(device, 'present', ShaderStage.FRAGMENT);
-  const module = await programModule(device, 'present');
-  const pipeline = await device.createRenderPipelineAsync({
-    label: 'present',
-    layout: layout.layout,
-    vertex: { module, entryPoint: 'present_vertex' },
-    fragment: { module, entryPoint: 'present_fragment', targets: [{ format }] },
-    primitive: { topology: 'triangle-list' },
-  });
-  return { pipeline, layout };
-}

@@ -10,6 +10,7 @@ import type { WavefrontPathTracingComputeConfig } from './config.ts';
 import { materialFeatures } from './scene/material-features.ts';
 import { materialHeapCells } from './scene/pack-materials.ts';
 import { vertexStreamBytes } from './scene/pack-vertices.ts';
+import { denoiserFilmReads } from '../film/denoise/registry.ts';
 import type { PreparedScene } from './scene/prepare-scene.ts';
 
 /**
@@ -45,10 +46,13 @@ export function planInput(config: WavefrontPathTracingComputeConfig, scene: Norm
   };
 }
 
-/** Output accumulation the options need: the denoiser's guides are the AOVs, its variance the moments. */
+/**
+ * Output accumulation the options need: the AOVs and moments for readAov, the moments for adaptive
+ * sampling, and what the denoiser reads.
+ */
 export function outputFeatures(config: WavefrontPathTracingComputeConfig): { aovs: boolean; moments: boolean } {
-  const denoise = config.output.denoise !== null;
-  return { aovs: config.aovs || denoise, moments: config.aovs || config.output.denoise?.denoiser === 'atrous' || config.output.adaptive !== null };
+  const denoiser = config.output.denoise ? denoiserFilmReads(config.output.denoise.denoiser) : { aovs: false, moments: false };
+  return { aovs: config.aovs || denoiser.aovs, moments: config.aovs || denoiser.moments || config.output.adaptive !== null };
 }
 
 /** The shader features a scene needs; everything else is compiled out. */

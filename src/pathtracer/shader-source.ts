@@ -1,12 +1,15 @@
-import { generatedPrograms } from '../shaders/programs.generated.ts';
-import type { ProgramName } from '../shaders/programs.ts';
+import { eagerProgramWgsl } from '../shaders/program-sources.generated.ts';
+import type { EagerProgramName } from '../shaders/programs.ts';
 
-export type WavefrontShaderSources = Record<ProgramName, string>;
+export type WavefrontShaderSources = Record<EagerProgramName, string>;
 
 /**
- * The linked WGSL of every GPU program (the wavefront kernels, the display resolve and the canvas
- * present), as the build's WESL linker produced them from src/**\/*.wesl.
+ * The linked WGSL of the path tracer's programs, as the build's WESL linker produced them from
+ * src/**\/*.wesl: the wavefront kernels (camera, trace, shade, accumulate), adaptive sampling, the
+ * à-trous denoiser, the display resolve and the canvas present. The GPU BVH builder's and the OIDN
+ * denoiser's programs are not included: they ship in chunks of their own that the renderer loads
+ * when it first uses them.
  */
 export function createWavefrontPathTracingComputeShaderSource(): WavefrontShaderSources {
-  return Object.fromEntries(Object.entries(generatedPrograms).map(([name, p]) => [name, p.wgsl])) as WavefrontShaderSources;
+  return { ...eagerProgramWgsl };
 }

@@ -1,5 +1,7 @@
+import type { WavefrontRadianceImage } from '../film/accumulation/readback.ts';
+export type { WavefrontRadianceImage } from '../film/accumulation/readback.ts';
 import type { WavefrontLightingOptions, WavefrontSceneLightInput } from '../lighting/lighting-options.ts';
-import type { WavefrontAovName } from '../post/aovs.ts';
+import type { WavefrontAovName } from '../film/aovs.ts';
 import type { WavefrontCameraInput, WavefrontSceneDescription, WavefrontToneMapping } from '../scene/types.ts';
 import type { WavefrontOutputOptions, WavefrontRenderFrameOptions } from './output-options.ts';
 import type { AccelerationBuildMode } from './scene/prepare-scene.ts';
@@ -21,7 +23,8 @@ export type { AccelerationBuildMode } from './scene/prepare-scene.ts';
 export type { WavefrontGeometryUpdate, WavefrontGeometryUpdateStats, WavefrontMeshGeometryUpdate, WavefrontInstanceTransformUpdate } from './scene/geometry-update.ts';
 export type { BvhUpdateMode } from './scene/scene-acceleration.ts';
 
-export type CanvasTarget = HTMLCanvasElement | OffscreenCanvas | string;
+import type { CanvasTarget } from '../film/display/canvas-target.ts';
+export type { CanvasTarget } from '../film/display/canvas-target.ts';
 
 /** What `updateScene` replaces; what is left out stays. */
 export interface WavefrontSceneUpdate {
@@ -137,7 +140,7 @@ export interface WavefrontFrameStats {
   samplesAccumulated: number;
   /** The call's samplesPerPixel: a ceiling when frameTimeBudgetMs or adaptive sampling ends the frame sooner. */
   samplesPerPixel: number;
-  /** Sample passes actually rendered (equal to samplesAdded; the mirrored API's name). */
+  /** Sample passes actually rendered (equal to samplesAdded; the 0.2 API's name, kept for its hosts). */
   renderedSamplesPerPixel: number;
   frameTimeBudgetMs: number | null;
   rays: WavefrontRayCounts;
@@ -179,12 +182,6 @@ export interface WavefrontFrameStats {
   transportExperimentRequestedFlags: number;
 }
 
-export interface WavefrontRadianceImage {
-  width: number;
-  height: number;
-  /** RGBA, linear mean radiance, row-major, top row first. */
-  data: Float32Array;
-}
 
 export interface WavefrontPixelImage {
   width: number;

@@ -17,12 +17,12 @@ import { sunSolidAngle } from '../lighting/sun-light.ts';
 import { readTexturePixels } from '../runtime/read-pixels.ts';
 import { createCanvasTarget, createOffscreenTarget, resolveCanvas, type RenderTarget } from '../runtime/render-target.ts';
 import type { GpuRendererFormat } from '../runtime/renderer-types.ts';
-import { toneMappingModeIds } from '../post/tone-mapping.ts';
+import { toneMappingModeIds } from '../film/tone-mapping.ts';
 import { cameraViewProjection, lightViewProjection, validateRasterCamera, type RasterCamera } from './camera-matrices.ts';
 import { computeBrdfLut, createConstantEnvironment, createMapEnvironment, type RasterEnvironment } from './gpu/environment.ts';
 import { uploadMeshStreams, type GpuMeshStreams } from './gpu/geometry.ts';
 import { createGpuMaterial, type GpuRasterMaterial } from './gpu/materials.ts';
-import { createRasterPipelines, DEPTH_FORMAT, HDR_FORMAT, SHADOW_FORMAT } from './gpu/pipelines.ts';
+import { createRasterPipelines, DEPTH_FORMAT, HDR_FORMAT, SHADOW_FORMAT, type RasterPipelines } from './gpu/pipelines.ts';
 import { rasterConstants, rasterDrawLayout, rasterFrameLayout } from './gpu/raster-layout.ts';
 import { createRasterSkinning } from './gpu/skinning.ts';
 import { createRasterTextures } from './gpu/textures.ts';
@@ -118,7 +118,14 @@ export async function createRasterRenderer(options: RasterRendererOptions): Prom
     throw error;
   }
   device.pushErrorScope('validation');
-  const pipelines = createRasterPipelines(device, validated.msaa);
+  let pipelines: RasterPipelines;
+  try {
+    pipelines = await createRasterPipelines(device, validated.msaa);
+  } catch (error) {
+    await device.popErrorScope();
+    if (ownsDevice) device.destroy();
+    throw error;
+  }
   const textures = createRasterTextures(device, options, scene.materials);
   const materials = scene.materials.map((m) => createGpuMaterial(device, pipelines.drawLayouts[1]!, m, textures));
   const meshStreams = scene.base.meshes.map((m, i) => uploadMeshStreams(device, m, `mesh ${i}`));

@@ -1,15 +1,6 @@
 import { BufferUsage, MapMode } from '../gpu/webgpu-constants.ts';
+import { halfBitsToFloat32 } from '../math/half-float.ts';
 import type { GpuRendererFormat, RendererPixels } from './renderer-types.ts';
-
-/** IEEE 754 binary16 to number. */
-function halfToFloat(h: number): number {
-  const sign = h & 0x8000 ? -1 : 1;
-  const exponent = (h >> 10) & 0x1f;
-  const mantissa = h & 0x3ff;
-  if (exponent === 0) return sign * 2 ** -14 * (mantissa / 1024);
-  if (exponent === 31) return mantissa ? NaN : sign * Infinity;
-  return sign * 2 ** (exponent - 15) * (1 + mantissa / 1024);
-}
 
 /**
  * Copies a whole texture to a mappable buffer and returns tightly packed RGBA rows. Rows in the
@@ -31,7 +22,7 @@ export async function readTexturePixels(device: GPUDevice, texture: GPUTexture, 
     const data = new Float32Array(width * height * 4);
     const view = new DataView(bytes.buffer);
     for (let y = 0; y < height; y++) {
-      for (let i = 0; i < width * 4; i++) data[y * width * 4 + i] = halfToFloat(view.getUint16(y * bytesPerRow + i * 2, true));
+      for (let i = 0; i < width * 4; i++) data[y * width * 4 + i] = halfBitsToFloat32(view.getUint16(y * bytesPerRow + i * 2, true));
     }
     return { width, height, format, data };
   }

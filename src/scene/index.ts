@@ -8,3 +8,4 @@ export { maxCoordinateMagnitude, maxRadiance, maxEmittedPower } from './limits.t
 export { createCornellBoxScene } from './cornell-box.ts';
 export { frameBounds, orbitCamera, lookAtCamera, sceneBounds, defaultFraming, type FrameBoundsOptions, type SceneBounds } from './camera-framing.ts';
 export { parseSceneFile, validateSceneDescription, type WavefrontSceneFile, type WavefrontEnvironmentMapReference } from './scene-file.ts';
+export { parseGltfReferences, type GltfSceneReference } from './gltf-references.ts';

@@ -238,7 +238,7 @@ export function normalizeTextureRef(input: WavefrontTextureRefInput, field: stri
 
 /**
  * Validates glTF material factors and textures (glTF 2.0 section 3.9 defaults) and folds the
- * mirrored package's mesh-level `emission: [r, g, b, strength]` in, which overrides the material's
+ * mesh-level `emission: [r, g, b, strength]` of the 0.2 API (which hosts written for it still pass) in, which overrides the material's
  * emissive terms. Errors name the field (`materials[2].roughnessFactor`).
  */
 export function normalizeMaterial(

@@ -7,7 +7,7 @@
  */
 import { GpuRendererError } from '../errors/gpu-renderer-error.ts';
 import { describe } from '../errors/validate.ts';
-import { parseGltfReferences, type GltfSceneReference } from '../io/gltf/scene-file-references.ts';
+import { parseGltfReferences, type GltfSceneReference } from './gltf-references.ts';
 import type {
   WavefrontCameraInput,
   WavefrontEnvironmentInput,

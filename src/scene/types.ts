@@ -175,7 +175,7 @@ export interface WavefrontMeshInput {
   colors?: ArrayLike<number>;
   /** The mesh's material, inline or as an index into the scene's `materials`. */
   material?: WavefrontMaterialInput | number;
-  /** The mirrored package's mesh-level emission: [r, g, b, strength]; overrides material emission. */
+  /** Mesh-level emission [r, g, b, strength], kept so hosts written for the 0.2 API work; overrides material emission. */
   emission?: Vec4Input;
 }
 

@@ -5,4 +5,5 @@ export { expandOutputPattern, outputPaths, fileSafeName, hasFramePlaceholder, ha
 export { turntableCamera, checkTurntable, type TurntableOptions } from './turntable.ts';
 export { planGltfSequence, poseGltfSequenceItem, gltfSequence, sequencePatternValues, type GltfSequenceOptions, type GltfSequenceItem, type GltfSequenceFrame } from './gltf-sequence.ts';
 export { createSequenceRenderer, sameTopology, type SequenceRenderer, type SequenceRendererOptions, type SequenceRendererSettings } from './sequence-renderer.ts';
-export { writeFrameFile, frameFileExists } from './frame-files.ts';
+// Frame files are written by src/io (the one place touching files); re-exported where they were published.
+export { writeFrameFile, frameFileExists } from '../io/frame-files.ts';

@@ -13,7 +13,7 @@ export const shaderFeatures = {
   FEATURE_AOVS: { default: true, doc: 'the first non-specular hit writes albedo, normal, depth and ids' },
   FEATURE_FILM_MOMENTS: { default: true, doc: 'the film accumulates the half-sample sum and second moments (adaptive sampling, variance, denoising)' },
   FEATURE_ADAPTIVE_SAMPLING: { default: true, doc: 'waves take their pixels from the active-pixel list of adaptive sampling' },
-  // Lighting (issue 8).
+  // Lighting: which emitter kinds and samplers the scene needs.
   FEATURE_ENVIRONMENT_MAP: { default: true, doc: 'the environment is an importance-sampled map (environmentMap, environmentLighting)' },
   FEATURE_SUN: { default: true, doc: 'a sun disc (environmentLighting) is cone-sampled and seen by escaped rays' },
   FEATURE_PORTALS: { default: true, doc: 'environment portals steer environment sampling' },

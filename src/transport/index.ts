@@ -1,5 +1,5 @@
 export { createMediumStack, isMediumStack, mediumStackLimit, noMediumId, type MediumStack, type MediumStackTransition } from './medium-stack.ts';
-export { dielectricInterface, type DielectricInterface } from './fresnel.ts';
+export { dielectricInterface, fresnelDielectric, type DielectricInterface } from './fresnel.ts';
 export { createTransportBranches, type TransportBranch, type TransportBranches, type TransportBranchOptions } from './transport-branches.ts';
 export {
   createSpectralSamples,

@@ -1,14 +1,15 @@
 import { GpuRendererError } from '../errors/gpu-renderer-error.ts';
 import { requireInteger } from '../errors/validate.ts';
+import { MEDIUM_STACK_DEPTH } from '../gpu-layout/constants.ts';
 
 /**
  * Nested participating media along one ray, innermost last. The GPU path state carries a bounded
- * stack (see `mediumStackLimit`), so this reference implementation enforces the same bound and
+ * stack (`MEDIUM_STACK_DEPTH` ids in PathState.media), so this reference implementation enforces the same bound and
  * reports, instead of hiding, the two ways a scene can violate it: entering a fifth medium
  * (overflow) and leaving a medium that is not the innermost one (mismatch, e.g. overlapping or
  * non-closed volumes; pbrt-v4 "Media" section discusses the same ambiguity for medium interfaces).
  */
-export const mediumStackLimit = 4;
+export const mediumStackLimit = MEDIUM_STACK_DEPTH;
 
 /** Medium id 0 means "no medium" (vacuum / the scene's outer medium), as PathState.mediumId does. */
 export const noMediumId = 0;

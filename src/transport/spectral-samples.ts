@@ -1,4 +1,5 @@
 import { requireInteger, requireNumberInRange } from '../errors/validate.ts';
+import { FRAUNHOFER_C_TENTHS_NM, FRAUNHOFER_D_TENTHS_NM, FRAUNHOFER_F_TENTHS_NM } from '../gpu-layout/constants.ts';
 
 /**
  * Wavelength samples with their per-wavelength IOR, following KHR_materials_dispersion: the
@@ -6,7 +7,8 @@ import { requireInteger, requireNumberInRange } from '../errors/validate.ts';
  * Fraunhofer F, C and D lines, and n(lambda) is the two-term Cauchy fit n = A + B / lambda^2
  * anchored at n(lambda_D) = ior (the KHR_materials_ior value), clamped to at least 1.
  */
-export const fraunhoferLinesNm = Object.freeze({ F: 486.1, D: 587.6, C: 656.3 });
+// The lines come from the GPU constants, so the kernels' dispersion and this reference use the same ones.
+export const fraunhoferLinesNm = Object.freeze({ F: FRAUNHOFER_F_TENTHS_NM / 10, D: FRAUNHOFER_D_TENTHS_NM / 10, C: FRAUNHOFER_C_TENTHS_NM / 10 });
 
 /** Visible range sampled when dispersion is on (CIE 1931 tables are commonly cut to 380-780 nm). */
 export const visibleWavelengthRangeNm = Object.freeze({ min: 380, max: 780 });

@@ -5,24 +5,9 @@ import { readAnimatedModel } from '../../src/animation/model/read-model.ts';
 import { evaluateClipPose, loopClipTimeMs } from '../../src/animation/pose/evaluate-clip.ts';
 import { blendPoses } from '../../src/animation/pose/blend-poses.ts';
 import { createRestPose } from '../../src/animation/pose/pose.ts';
-import { composeTrs, computeJointMatrices, computeWorldMatrices } from '../../src/animation/pose/world-matrices.ts';
-import { rng } from '../helpers/random.ts';
+import { computeJointMatrices, computeWorldMatrices } from '../../src/animation/pose/world-matrices.ts';
 import { axisAngleQuaternion, createRiggedFigure } from './fixtures/rigged-figure.ts';
 import { assertClose, assertSameRotation } from './helpers.ts';
-
-test('composeTrs equals the product translation(t) x rotation(q) x scaling(s) built by wgpu-matrix', () => {
-  const random = rng(7);
-  for (let i = 0; i < 20; i++) {
-    const t = [random() * 4 - 2, random() * 4 - 2, random() * 4 - 2];
-    const raw = [random() - 0.5, random() - 0.5, random() - 0.5, random() - 0.5];
-    const q = raw.map((v) => v / Math.hypot(...raw));
-    const s = [0.2 + random(), -0.5 - random(), 0.1 + 2 * random()];
-    const reference = mat4d.multiply(mat4d.multiply(mat4d.translation(t), mat4d.fromQuat(q)), mat4d.scaling(s));
-    const out = new Float64Array(16);
-    composeTrs(t, 0, q, 0, s, 0, out);
-    assertClose(out, reference, 1e-12, `case ${i}`);
-  }
-});
 
 test('world matrices of a sampled walk pose equal gltf-transform world matrices of the same TRS', () => {
   const { document } = createRiggedFigure();

@@ -10,7 +10,7 @@ import { encode as encodePng } from 'fast-png';
 import jpeg from 'jpeg-js';
 import webp from 'webp-wasm';
 import { loadGltfScene } from '../../src/io/index.ts';
-import { srgbToLinear } from '../../src/post/tone-mapping.ts';
+import { srgbToLinear } from '../../src/film/tone-mapping.ts';
 import type * as Pkg from '../../src/index.ts';
 import { chromiumSkip, openPackagePage } from './browser-session.ts';
 

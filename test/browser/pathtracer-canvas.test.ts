@@ -5,7 +5,7 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { decode } from 'fast-png';
 import { chromiumSkip, openPackagePage } from './browser-session.ts';
-import { linearToSrgb } from '../../src/post/tone-mapping.ts';
+import { linearToSrgb } from '../../src/film/tone-mapping.ts';
 import type * as Pkg from '../../src/index.ts';
 
 const size = 32;

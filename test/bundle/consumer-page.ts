@@ -14,7 +14,7 @@ import { decode } from 'fast-png';
 import type { Browser, Page } from 'playwright-core';
 import { chromiumPath, chromiumWebGpuArgs } from '../browser/browser-session.ts';
 import { loadGltfScene } from '../../src/io/index.ts';
-import { linearToSrgb } from '../../src/post/tone-mapping.ts';
+import { linearToSrgb } from '../../src/film/tone-mapping.ts';
 import { createNormalMappedGlb, meshStreams, panelCamera, panelTexels, type MeshStreams } from './normal-mapped-asset.ts';
 import { serveDirectory } from './serve.ts';
 

@@ -1,6 +1,6 @@
 /**
  * A minimal OpenEXR reader for the CLI tests, written from the file layout specification
- * (openexr.com, "OpenEXR File Layout"), independently of src/post/files/exr-encode.ts: single-part
+ * (openexr.com, "OpenEXR File Layout"), independently of src/io/images/exr-encode.ts: single-part
  * scanline files, NO / ZIPS / ZIP compression, HALF and FLOAT channels of any name.
  */
 import { unzlibSync } from 'fflate';

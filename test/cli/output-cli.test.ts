@@ -14,7 +14,7 @@ import { GpuRendererError } from '../../src/errors/gpu-renderer-error.ts';
 import { createWavefrontPathTracingComputeRenderer } from '../../src/pathtracer/index.ts';
 import { createCornellBoxScene } from '../../src/scene/cornell-box.ts';
 import { testDevice } from '../helpers/gpu.ts';
-import { readHdrWithThree } from '../post/files/independent-readers.ts';
+import { readHdrWithThree } from '../io/images/independent-readers.ts';
 import { readExrChannels } from './exr-reader.ts';
 
 const root = fileURLToPath(new URL('../..', import.meta.url));

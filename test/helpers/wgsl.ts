@@ -3,7 +3,7 @@
 // sources as the shipped programs, and runs on real WebGPU with an automatic pipeline layout.
 import { linkProgram, weslProjectSources } from '../../scripts/shader-build/wesl-project.ts';
 import { reflectProgram, type ProgramReflection } from '../../scripts/shader-build/reflect.ts';
-import type { WeslSources } from '../../src/shaders/layout-modules.ts';
+import type { WeslSources } from '../../scripts/shader-build/layout-modules.ts';
 import { createShaderChecked } from './gpu.ts';
 
 let projectSources: WeslSources | undefined;

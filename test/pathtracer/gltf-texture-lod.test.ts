@@ -10,7 +10,7 @@ import assert from 'node:assert/strict';
 import { Document, TextureInfo } from '@gltf-transform/core';
 import { KHRMaterialsIOR, KHRTextureTransform } from '@gltf-transform/extensions';
 import { encode as encodePng } from 'fast-png';
-import { linearToSrgb, srgbToLinear } from '../../src/post/tone-mapping.ts';
+import { linearToSrgb, srgbToLinear } from '../../src/film/tone-mapping.ts';
 import { orthographicCameraNode, quad, renderScene, roundTrip } from './gltf-scenes.ts';
 
 const CHECKER = 64;

@@ -26,7 +26,7 @@ import { buildTextureAtlas } from '../../src/materials/textures/texture-atlas.ts
 import { readTextureInfo, sampleTextureInfo, textureLod, type Rgba } from '../../src/materials/textures/reference-sampler.ts';
 import { applyTextureTransform, textureTransformMatrix } from '../../src/materials/textures/texture-transform.ts';
 import type { WavefrontMagFilter, WavefrontWrapMode } from '../../src/scene/types.ts';
-import { srgbToLinear } from '../../src/post/tone-mapping.ts';
+import { srgbToLinear } from '../../src/film/tone-mapping.ts';
 import { orthographicCameraNode, quad, renderScene, roundTrip } from './gltf-scenes.ts';
 
 /** 4 x 4 texels of distinct colours (a colour checker): a wrong texel shows as a large error. */

@@ -13,7 +13,7 @@ import { directionToEquirectUv } from '../../src/lighting/equirect.ts';
 import { readBuffer, testDevice } from '../helpers/gpu.ts';
 import { runTestProgram } from '../helpers/wgsl.ts';
 import { BufferUsage } from '../../src/gpu/webgpu-constants.ts';
-import { chiSquareTest } from './../lighting/helpers.ts';
+import { chiSquareTest } from '../lighting/helpers.ts';
 import { lightingFor, lightingResources, mapIrradiance, mapOption, testHdri } from '../lighting/gpu-fixtures.ts';
 
 const samplerKernel = `

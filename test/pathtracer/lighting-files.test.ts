@@ -13,7 +13,7 @@ import { parseRenderArgs, type RenderCommand } from '../../src/cli/args.ts';
 import { applyEnvironmentFlags } from '../../src/cli/environment-flags.ts';
 import { loadEnvironmentMap } from '../../src/lighting/load-environment-map.ts';
 import { environmentRadiance, validateEnvironmentMap } from '../../src/lighting/environment-map.ts';
-import { encodeHdr } from '../../src/post/files/hdr-encode.ts';
+import { encodeHdr } from '../../src/io/images/hdr-encode.ts';
 import { GpuRendererError } from '../../src/errors/gpu-renderer-error.ts';
 import { testDevice } from '../helpers/gpu.ts';
 

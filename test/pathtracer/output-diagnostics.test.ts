@@ -7,14 +7,15 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { createWavefrontPathTracingComputeRenderer } from '../../src/pathtracer/index.ts';
 import { transportExperimentNames } from '../../src/pathtracer/feature-flags.ts';
-import { encodeRadianceToRgba8 } from '../../src/post/tone-mapping.ts';
+import { encodeRadianceToRgba8 } from '../../src/film/tone-mapping.ts';
 import { GpuRendererError } from '../../src/errors/gpu-renderer-error.ts';
 import { pathTracerBindings } from '../../src/gpu-layout/bindings.ts';
 import { LUMINANCE_FRACTION_BITS, queueBufferWords, queueCounterSlots } from '../../src/gpu-layout/constants.ts';
-import { frameUniformsLayout, pathRecordLayout, waveUniformsLayout } from '../../src/gpu-layout/records.ts';
+import { filmAovPixelLayout, filmMomentsLayout, filmPixelLayout, frameUniformsLayout, pathRecordLayout, waveUniformsLayout } from '../../src/gpu-layout/records.ts';
 import { allocateStructArray, writeStruct } from '../../src/gpu-layout/struct-layout.ts';
 import { BufferUsage } from '../../src/gpu/webgpu-constants.ts';
 import { generatedPrograms } from '../../src/shaders/programs.generated.ts';
+import { programWgsl } from '../../src/shaders/program-wgsl.ts';
 import { readBuffer, testDevice, uploadBuffer } from '../helpers/gpu.ts';
 import { runTestProgram } from '../helpers/wgsl.ts';
 import { cornellRenderer, luminance, rect, squareCamera } from './output-helpers.ts';
@@ -212,15 +213,15 @@ test('invalid contributions are dropped and counted, and each sample that lost o
   writeStruct(waveUniformsLayout, new DataView(wave), 0, { firstPath: 0, firstSample: 0, pathCount: slots, list: 0 });
   const frame = new ArrayBuffer(frameUniformsLayout.size);
   writeStruct(frameUniformsLayout, new DataView(frame), 0, { imageSize: [slots, 1] });
-  const film = uploadBuffer(device, new Float32Array(slots * 4));
+  const film = uploadBuffer(device, new Float32Array((slots * filmPixelLayout.size) / 4));
   const resources: Record<string, GPUBuffer> = {
     paths, queues, film, frame: uploadBuffer(device, frame, BufferUsage.UNIFORM),
-    filmAovs: uploadBuffer(device, new Float32Array(slots * 12)), filmMoments: uploadBuffer(device, new Float32Array(slots * 8)),
+    filmAovs: uploadBuffer(device, new Float32Array((slots * filmAovPixelLayout.size) / 4)), filmMoments: uploadBuffer(device, new Float32Array((slots * filmMomentsLayout.size) / 4)),
     filmIds: uploadBuffer(device, new Uint32Array(slots)), adaptivePixels: uploadBuffer(device, new Uint32Array(8)),
     wave: uploadBuffer(device, wave, BufferUsage.UNIFORM),
   };
   const program = generatedPrograms.accumulate;
-  const module = device.createShaderModule({ code: program.wgsl });
+  const module = device.createShaderModule({ code: await programWgsl('accumulate') });
   const pipeline = await device.createComputePipelineAsync({ layout: 'auto', compute: { module, entryPoint: 'accumulate_samples' } });
   const encoder = device.createCommandEncoder();
   const pass = encoder.beginComputePass();

@@ -5,7 +5,7 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { createWavefrontPathTracingComputeRenderer } from '../../src/pathtracer/index.ts';
-import { srgbToLinear } from '../../src/post/tone-mapping.ts';
+import { srgbToLinear } from '../../src/film/tone-mapping.ts';
 import { createCornellBoxScene } from '../../src/scene/cornell-box.ts';
 import type { WavefrontMaterialInput, WavefrontMeshInput, WavefrontPathTracingOptions, WavefrontTextureInput } from '../../src/index.ts';
 import { testDevice } from '../helpers/gpu.ts';

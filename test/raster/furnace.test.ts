@@ -5,7 +5,7 @@
 // prefilter, spherical-harmonics irradiance). Linear tone mapping, so pixels are sRGB(radiance).
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { linearToSrgb } from '../../src/post/tone-mapping.ts';
+import { linearToSrgb } from '../../src/film/tone-mapping.ts';
 import { createRasterRenderer, type RasterRendererOptions } from '../../src/raster/index.ts';
 import type { WavefrontMaterialInput } from '../../src/scene/types.ts';
 import { testDevice } from '../helpers/gpu.ts';

@@ -8,7 +8,7 @@ import { createRequire } from 'node:module';
 import { join } from 'node:path';
 import { encode as encodePng } from 'fast-png';
 import { loadGltfScene, loadEnvironmentMap } from '../../src/index.ts';
-import { decodeHdr } from '../../src/post/files/hdr-decode.ts';
+import { decodeHdr } from '../../src/io/images/radiance-hdr.ts';
 import { assetFolder, refused, triangleDataUri, triangleGltf } from './helpers.ts';
 
 const encoder = new TextEncoder();

@@ -139,7 +139,7 @@ test('scene JSON: a glTF reference poses its asset with "animation" and "time"',
   const { join } = await import('node:path');
   const { NodeIO } = await import('@gltf-transform/core');
   const { loadSceneFile } = await import('../../src/io/scene-file-loader.ts');
-  const { parseGltfReferences } = await import('../../src/io/gltf/scene-file-references.ts');
+  const { parseGltfReferences } = await import('../../src/scene/gltf-references.ts');
   const dir = await mkdtemp(join(tmpdir(), 'gpu-renderer-pose-'));
   t.after(() => rm(dir, { recursive: true, force: true }));
   await writeFile(join(dir, 'tube.glb'), await new NodeIO().writeBinary(createBendingTube().document));

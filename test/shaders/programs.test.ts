@@ -3,12 +3,10 @@
 // the binding table (reflection of the linked WGSL, not a hand-kept list).
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { pathTracerBindings } from '../../src/gpu-layout/bindings.ts';
-import { displayBindings } from '../../src/shaders/display-bindings.ts';
-import { bvhBuildBindings } from '../../src/accel/gpu-build/bindings.ts';
-import { oidnBindings } from '../../src/post/denoise/oidn/bindings.ts';
+import { bindingTables } from '../../scripts/shader-build/binding-tables.ts';
 import { generatedPrograms } from '../../src/shaders/programs.generated.ts';
-import { programSpecs } from '../../src/shaders/programs.ts';
+import { programWgsl } from '../../src/shaders/program-wgsl.ts';
+import { programGroups, programSpecs, type ProgramName } from '../../src/shaders/programs.ts';
 import { shaderFeatures } from '../../src/shaders/features.ts';
 import { createWavefrontPathTracingComputeShaderSource } from '../../src/pathtracer/index.ts';
 import { testDevice } from '../helpers/gpu.ts';
@@ -16,8 +14,7 @@ import { testDevice } from '../helpers/gpu.ts';
 test('every program binds within WebGPU default limits and only table bindings', () => {
   for (const [name, spec] of Object.entries(programSpecs)) {
     const program = generatedPrograms[name as keyof typeof generatedPrograms];
-    const tables: Record<string, Record<string, { kind: string; group: number }>> = { display: displayBindings, oidn: oidnBindings, pathTracer: pathTracerBindings, bvhBuild: bvhBuildBindings };
-    const table = tables[spec.bindings]!;
+    const table = bindingTables[spec.group];
     const storage = program.bindings.filter((b) => table[b]!.kind === 'storage').length;
     assert.ok(storage <= 8, `${name} binds ${storage} storage buffers`);
     assert.ok(Math.max(...program.bindings.map((b) => table[b]!.group)) < 4, `${name} uses more than 4 bind groups`);
@@ -27,10 +24,19 @@ test('every program binds within WebGPU default limits and only table bindings',
 
 test('the shipped WGSL of every program compiles on WebGPU without errors', async () => {
   const device = await testDevice();
-  for (const [name, code] of Object.entries(createWavefrontPathTracingComputeShaderSource())) {
+  for (const name of Object.keys(programSpecs) as ProgramName[]) {
+    const code = await programWgsl(name);
     // The half-precision OIDN programs need the shader-f16 feature (the runtime picks f32 without it).
     if (/^enable f16;/m.test(code) && !device.features.has('shader-f16')) continue;
     const info = await device.createShaderModule({ code }).getCompilationInfo();
     assert.deepEqual(info.messages.filter((m) => m.type === 'error').map((m) => m.message), [], name);
   }
+});
+
+test('the public shader source is exactly the programs of the eagerly loaded groups', async () => {
+  const sources: Record<string, string> = createWavefrontPathTracingComputeShaderSource();
+  const eager = (Object.keys(programSpecs) as ProgramName[]).filter((name) => programGroups[programSpecs[name].group].loading === 'eager');
+  assert.deepEqual(Object.keys(sources).sort(), eager.sort());
+  for (const name of eager) assert.equal(sources[name], await programWgsl(name), name);
+  assert.ok(eager.includes('shade') && eager.includes('present'));
 });

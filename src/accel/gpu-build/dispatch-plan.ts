@@ -7,7 +7,7 @@ import { BufferUsage, MapMode } from '../../gpu/webgpu-constants.ts';
 import { bvhBuildConstants, dynamicUniformStride } from '../../gpu-layout/constants.ts';
 import { bvhBuildUniformsLayout } from '../../gpu-layout/records.ts';
 import { writeStruct } from '../../gpu-layout/struct-layout.ts';
-import type { KernelPipeline } from '../../pathtracer/pipelines.ts';
+import type { KernelPipeline } from '../../shaders/program-pipelines.ts';
 import { bvhBuildBindings } from './bindings.ts';
 import type { BvhBuildKernel, BvhBuildPipelines } from './pipelines.ts';
 

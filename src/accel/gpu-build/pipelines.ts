@@ -1,10 +1,11 @@
 /**
  * Compute pipelines of the GPU BVH builder and refitter, compiled once per device, with explicit
- * layouts derived from the bindings each program declares (src/pathtracer/pipelines.ts).
+ * layouts derived from the bindings each program declares (src/shaders/program-pipelines.ts).
  */
 import { GpuRendererError } from '../../errors/gpu-renderer-error.ts';
-import { computePipeline, type KernelPipeline } from '../../pathtracer/pipelines.ts';
+import { computePipeline, type KernelPipeline } from '../../shaders/program-pipelines.ts';
 import { allShaderFeatures } from '../../shaders/features.ts';
+import { bvhBuildBindings } from './bindings.ts';
 import type { ProgramName } from '../../shaders/programs.ts';
 
 export const bvhBuildKernels = {
@@ -36,7 +37,7 @@ async function create(device: GPUDevice): Promise<BvhBuildPipelines> {
   let failure: unknown;
   try {
     const entries = await Promise.all(
-      Object.entries(bvhBuildKernels).map(async ([name, [program, entry]]) => [name, await computePipeline(device, program, entry, allShaderFeatures)] as const),
+      Object.entries(bvhBuildKernels).map(async ([name, [program, entry]]) => [name, await computePipeline(device, bvhBuildBindings, program, entry, allShaderFeatures)] as const),
     );
     pipelines = Object.fromEntries(entries) as BvhBuildPipelines;
   } catch (error) {

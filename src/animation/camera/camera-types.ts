@@ -1,6 +1,6 @@
 import type { Vec3 } from '../model/model-types.ts';
 
-/** The four rig primitives (the mirrored README's editor, spectator, third-person and first-person rigs). */
+/** The four rig primitives (the 0.2 API's editor, spectator, third-person and first-person rigs). */
 export type CameraViewMode = 'editor' | 'spectator' | 'third-person' | 'first-person';
 
 export const CAMERA_VIEW_MODES: readonly CameraViewMode[] = ['editor', 'spectator', 'third-person', 'first-person'];

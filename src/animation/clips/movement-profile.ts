@@ -1,6 +1,6 @@
 import { fail, requireFiniteNumber } from '../../errors/validate.ts';
 
-/** How a clip moves the character (host metadata; see the mirrored README's `movementProfile`). */
+/** How a clip moves the character (host metadata: the 0.2 API's `movementProfile`). */
 export interface ClipMovementProfileInput {
   /**
    * 'authored': the clip's root joint translates (a walk that walks forward); 'in-place': it does

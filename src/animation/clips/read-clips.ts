@@ -1,6 +1,6 @@
 import type { AnimationSampler, Document, Node } from '@gltf-transform/core';
 import { fail } from '../../errors/validate.ts';
-import { readFloatAccessor } from '../model/read-accessor.ts';
+import { readFloatAccessor } from '../../io/accessors.ts';
 import type { AnimationChannelData, AnimationChannelPath, AnimationClip, AnimationInterpolation, AnimationSamplerData } from './clip-types.ts';
 
 const PATH_COMPONENTS: Record<string, number> = { translation: 3, rotation: 4, scale: 3 };

@@ -1,6 +1,6 @@
 import type { Material, Primitive } from '@gltf-transform/core';
 import { fail } from '../../errors/validate.ts';
-import { readFloatAccessor, readIndexAccessor } from './read-accessor.ts';
+import { readFloatAccessor, readIndexAccessor } from '../../io/accessors.ts';
 import { readSkinInfluences } from './skin-influences.ts';
 import type { ModelMorphTarget, ModelPrimitive } from './model-types.ts';
 

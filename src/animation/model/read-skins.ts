@@ -1,6 +1,6 @@
 import type { Document, Node } from '@gltf-transform/core';
 import { fail } from '../../errors/validate.ts';
-import { readFloatAccessor } from './read-accessor.ts';
+import { readFloatAccessor } from '../../io/accessors.ts';
 import type { ModelSkin } from './model-types.ts';
 
 /** Skins (glTF 2.0 section 3.7.3): joint node indices, inverse bind matrices, skeleton root. */

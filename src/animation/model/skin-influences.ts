@@ -1,6 +1,6 @@
 import type { Primitive } from '@gltf-transform/core';
 import { fail } from '../../errors/validate.ts';
-import { readFloatAccessor, readIndexAccessor } from './read-accessor.ts';
+import { readFloatAccessor, readIndexAccessor } from '../../io/accessors.ts';
 
 export interface SkinInfluences {
   influences: 0 | 4 | 8;

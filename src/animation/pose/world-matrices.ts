@@ -1,33 +1,7 @@
 import { mat4d } from 'wgpu-matrix';
+import { composeTrs } from '../../math/mat4.ts';
 import type { AnimatedModel } from '../model/model-types.ts';
 import type { Pose } from './pose.ts';
-
-type Numbers = { [index: number]: number; readonly length: number };
-
-/**
- * Column-major local matrix M = T * R * S of one node (glTF 2.0 section 3.5.3), written into
- * `out[o .. o + 16]`; R is the rotation matrix of the unit quaternion (x, y, z, w).
- */
-export function composeTrs(t: Numbers, to: number, r: Numbers, ro: number, s: Numbers, so: number, out: Numbers, o = 0): void {
-  const x = r[ro], y = r[ro + 1], z = r[ro + 2], w = r[ro + 3];
-  const sx = s[so], sy = s[so + 1], sz = s[so + 2];
-  out[o] = (1 - 2 * (y * y + z * z)) * sx;
-  out[o + 1] = 2 * (x * y + z * w) * sx;
-  out[o + 2] = 2 * (x * z - y * w) * sx;
-  out[o + 3] = 0;
-  out[o + 4] = 2 * (x * y - z * w) * sy;
-  out[o + 5] = (1 - 2 * (x * x + z * z)) * sy;
-  out[o + 6] = 2 * (y * z + x * w) * sy;
-  out[o + 7] = 0;
-  out[o + 8] = 2 * (x * z + y * w) * sz;
-  out[o + 9] = 2 * (y * z - x * w) * sz;
-  out[o + 10] = (1 - 2 * (x * x + y * y)) * sz;
-  out[o + 11] = 0;
-  out[o + 12] = t[to];
-  out[o + 13] = t[to + 1];
-  out[o + 14] = t[to + 2];
-  out[o + 15] = 1;
-}
 
 /**
  * World (model-space) matrix of every node for a pose: world(n) = world(parent) * local(n),

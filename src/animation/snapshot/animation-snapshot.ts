@@ -14,8 +14,8 @@ export interface MovementValidation {
 }
 
 /**
- * The renderer-independent part of the animated scene snapshot (the mirrored README's field
- * names). The GPU renderer adds what only it knows: modelRenderable, activeClipRenderable,
+ * The renderer-independent part of the animated scene snapshot (the 0.2 API's field
+ * names, which hosts check). The GPU renderer adds what only it knows: modelRenderable, activeClipRenderable,
  * characterVisible, render mode and texture readiness.
  */
 export interface AnimationSnapshotCore {

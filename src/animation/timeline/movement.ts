@@ -72,7 +72,7 @@ function isAuthored(clip: LibraryClip): boolean {
 const fmt = (x: number): string => (Math.round(x * 1000) / 1000).toString();
 
 /**
- * Resolves the character's displacement beat by beat (the mirrored README's movement rules):
+ * Resolves the character's displacement beat by beat (the 0.2 API's movement rules, which its hosts rely on):
  * - travel and jump beats move from the current route anchor towards the next one. With an
  *   authored-root-motion clip they move at the clip's speed (distance per loop / clip duration),
  *   so over a beat the distance is loops x distance per loop with loops = durationMs / clip

@@ -7,7 +7,7 @@
 import type { Camera } from '@gltf-transform/core';
 import type { WavefrontCameraInput } from '../../scene/types.ts';
 import { frameBounds, type SceneBounds } from '../../scene/camera-framing.ts';
-import { normalize, transformDirection, type Mat4 } from './matrix.ts';
+import { normalize, transformDirection, type Mat4 } from '../../math/mat4.ts';
 
 /** A camera placed in the scene by a node. */
 export interface GltfCameraInfo {

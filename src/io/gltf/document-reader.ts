@@ -13,9 +13,10 @@ import { failGltf, gltfError, pointer } from './errors.ts';
 import { SUPPORTED_EXTENSIONS } from './extensions.ts';
 import { isGlb, parseGlb } from './glb-container.ts';
 import { isMeshoptFallback, validateGltfJson } from './json-validation.ts';
-import { budgetOf, derivePolicy, locateSource, readSource, type DecodeBudget, type ResolvedResourcePolicy } from '../resource-policy.ts';
+import { budgetOf, derivePolicy, readByteSource, type DecodeBudget, type ResolvedResourcePolicy } from '../resource-policy.ts';
 import { JSON_BYTES_PER_VALUE, MAX_JSON_DEPTH, scanJson } from '../json-scan.ts';
 import { chargeGeometry, chargeImages } from './decode-budget.ts';
+import { nodeModule } from '../platform.ts';
 import { readResource } from './resources.ts';
 import { validateSparseIndices } from './sparse-indices.ts';
 
@@ -43,9 +44,8 @@ let dracoDecoder: Promise<unknown> | undefined;
 let meshoptDecoder: Promise<unknown> | undefined;
 
 async function loadDraco(): Promise<unknown> {
-  // A variable specifier: the package is Node-oriented, browser builds pass their own decoder.
-  const specifier = 'draco3dgltf';
-  const draco3d = ((await import(specifier)) as { default: { createDecoderModule: () => Promise<unknown> } }).default;
+  // Node-oriented: browser builds pass their own decoder.
+  const draco3d = (await nodeModule<{ default: { createDecoderModule: () => Promise<unknown> } }>('draco3dgltf')).default;
   return draco3d.createDecoderModule();
 }
 
@@ -65,12 +65,11 @@ function captureLogger(warnings: string[]): ILogger {
 }
 
 async function sourceBytes(source: Exclude<GltfSource, Document>, policy: ResolvedResourcePolicy, signal: AbortSignal | undefined): Promise<{ bytes: Uint8Array; base: URL | undefined }> {
-  if (source instanceof Uint8Array) return { bytes: source, base: undefined };
-  if (source instanceof ArrayBuffer) return { bytes: new Uint8Array(source), base: undefined };
-  const site = { code: 'INVALID_GLTF', field: '' } as const;
-  if (typeof source !== 'string' && !(source instanceof URL)) failGltf('', `expected a path, a URL, an ArrayBuffer, a Uint8Array or a Document, got ${source === null ? 'null' : typeof source}`);
-  const url = await locateSource(source, site);
-  return { bytes: await readSource(url, policy, site, signal), base: url };
+  if (!(source instanceof Uint8Array || source instanceof ArrayBuffer || typeof source === 'string' || source instanceof URL)) {
+    failGltf('', `expected a path, a URL, an ArrayBuffer, a Uint8Array or a Document, got ${source === null ? 'null' : typeof source}`);
+  }
+  const { bytes, url } = await readByteSource(source, policy, { code: 'INVALID_GLTF', field: '' }, signal);
+  return { bytes, base: url };
 }
 
 /** Refuses JSON nested deeper than MAX_JSON_DEPTH and charges its parsed size before parsing. */

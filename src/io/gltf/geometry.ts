@@ -9,7 +9,7 @@ import type { ModelMorphTarget } from '../../animation/model/model-types.ts';
 import { checkJointRange, readSkinInfluences, type SkinInfluences } from '../../animation/model/skin-influences.ts';
 import { applyMorphTargets } from '../../animation/skinning/morph-targets.ts';
 import { skinVertices } from '../../animation/skinning/skin-vertices.ts';
-import { accessorToFloat32, accessorToUint32, firstNonFinite } from './accessors.ts';
+import { accessorToFloat32, accessorToUint32, firstNonFinite } from '../accessors.ts';
 import { failGltf } from './errors.ts';
 import { withGltfPointers } from './posing.ts';
 import { MODE_NAMES, MODE_TRIANGLES, MODE_TRIANGLE_FAN, MODE_TRIANGLE_STRIP, sequentialIndices, toTriangleList } from './topology.ts';

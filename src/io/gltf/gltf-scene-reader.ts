@@ -14,14 +14,14 @@ import type {
   WavefrontTextureInput,
   WavefrontTextureRefInput,
 } from '../../scene/types.ts';
-import { accessorToFloat32 } from './accessors.ts';
+import { accessorToFloat32 } from '../accessors.ts';
 import { cameraFromNode, framingCamera, type GltfBounds, type GltfCameraInfo } from './cameras.ts';
 import { readGltfDocument, type GltfDecoderModules, type GltfSource } from './document-reader.ts';
 import { failGltf, pointer } from './errors.ts';
 import { primitiveGeometry, type PrimitiveGeometryOptions } from './geometry.ts';
 import { worldLight } from './lights.ts';
 import { defaultGltfMaterial, mapMaterial } from './materials.ts';
-import { composeTrs, determinant3, IDENTITY, multiply, transformPoint, type Mat4 } from './matrix.ts';
+import { composeTrs, determinant3, IDENTITY, multiply, transformPoint, type Mat4 } from '../../math/mat4.ts';
 import { flattenNodes } from './node-flattening.ts';
 import { chooseAnimation, needsRig, poseRig, poseTime, readRig, type GltfAnimationInfo, type GltfPoseOptions, type GltfRig } from './posing.ts';
 import { withMikkTSpaceTangents } from './tangents.ts';
@@ -186,7 +186,9 @@ function gpuInstances(node: Node, at: string): Mat4[] | undefined {
   const count = Math.max(t ? t.length / 3 : 0, r ? r.length / 4 : 0, s ? s.length / 3 : 0);
   const out: Mat4[] = [];
   for (let i = 0; i < count; i++) {
-    out.push(composeTrs(t ? t.subarray(i * 3, i * 3 + 3) : [0, 0, 0], r ? r.subarray(i * 4, i * 4 + 4) : [0, 0, 0, 1], s ? s.subarray(i * 3, i * 3 + 3) : [1, 1, 1]));
+    const m: Mat4 = new Array<number>(16);
+    composeTrs(t ?? [0, 0, 0], t ? 3 * i : 0, r ?? [0, 0, 0, 1], r ? 4 * i : 0, s ?? [1, 1, 1], s ? 3 * i : 0, m);
+    out.push(m);
   }
   return out;
 }

@@ -8,7 +8,7 @@
  */
 import type { WavefrontImageInput } from '../../scene/types.ts';
 import { failGltf } from './errors.ts';
-import { isNodeRuntime } from './resources.ts';
+import { isNodeRuntime, nodeModule } from '../platform.ts';
 import { checkImageHeader } from '../image-headers.ts';
 import { defaultResourcePolicy, type ResolvedResourcePolicy } from '../resource-policy.ts';
 
@@ -138,8 +138,7 @@ interface WebpWasm {
 async function decodeWebp(bytes: Uint8Array): Promise<WavefrontImageInput> {
   // webp-wasm (libwebp built by Squoosh, Node target) finds its .wasm next to itself, which works
   // from both the ES module and the CommonJS builds of this package.
-  const specifier = 'webp-wasm';
-  const webp = ((await import(specifier)) as { default: WebpWasm }).default;
+  const webp = (await nodeModule<{ default: WebpWasm }>('webp-wasm')).default;
   const exact = bytes.buffer.slice(bytes.byteOffset, bytes.byteOffset + bytes.byteLength) as ArrayBuffer;
   const decoded = await webp.decode(exact);
   if (decoded === null || decoded === undefined || decoded.width <= 0) throw new Error('libwebp rejected the data');

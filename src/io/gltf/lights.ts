@@ -5,7 +5,7 @@
  */
 import type { Light } from '@gltf-transform/extensions';
 import type { WavefrontPunctualLightInput } from '../../scene/types.ts';
-import { normalize, transformDirection, type Mat4 } from './matrix.ts';
+import { normalize, transformDirection, type Mat4 } from '../../math/mat4.ts';
 
 export function worldLight(light: Light, world: Mat4): WavefrontPunctualLightInput {
   const type = light.getType() as WavefrontPunctualLightInput['type'];

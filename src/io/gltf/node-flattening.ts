@@ -5,7 +5,7 @@
  */
 import type { Node, Scene } from '@gltf-transform/core';
 import type { Visibility } from '@gltf-transform/extensions';
-import { IDENTITY, multiply, type Mat4 } from './matrix.ts';
+import { IDENTITY, multiply, type Mat4 } from '../../math/mat4.ts';
 
 export interface FlatNode {
   node: Node;

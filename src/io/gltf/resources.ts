@@ -4,14 +4,7 @@
  * data URIs carry their bytes inline) are read under the caller's policy, and faults are
  * INVALID_GLTF errors at the JSON pointer of the buffer or image that names them.
  */
-import { isNodeRuntime, locateSource, readReference, type ResolvedResourcePolicy } from '../resource-policy.ts';
-
-export { isNodeRuntime };
-
-/** A string source as a URL: an absolute URL, or (Node) a file path. */
-export function sourceStringToUrl(source: string): Promise<URL> {
-  return locateSource(source, { code: 'INVALID_GLTF', field: '' });
-}
+import { readReference, type ResolvedResourcePolicy } from '../resource-policy.ts';
 
 /** Reads a resource the asset at `base` names by `uri` (undefined `base`: the asset was bytes). */
 export function readResource(uri: string, base: URL | undefined, field: string, policy: ResolvedResourcePolicy, signal: AbortSignal | undefined): Promise<Uint8Array> {

@@ -5,26 +5,11 @@
  */
 import type { Vec3 } from './vector.ts';
 
-/**
- * Unpolarised Fresnel reflectance of a smooth dielectric (pbrt-v4 FrDielectric): cosThetaI on the
- * incident side (negative: from inside, eta inverted), eta = n_t / n_i.
- */
-export function fresnelDielectric(cosThetaI: number, eta: number): number {
-  // An index-matched interface reflects nothing (the limit of the formulas below, without rounding noise).
-  if (eta === 1) return 0;
-  let cosI = Math.min(1, Math.max(-1, cosThetaI));
-  let e = eta;
-  if (cosI < 0) {
-    e = 1 / e;
-    cosI = -cosI;
-  }
-  const sin2T = (1 - cosI * cosI) / (e * e);
-  if (sin2T >= 1) return 1;
-  const cosT = Math.sqrt(1 - sin2T);
-  const rParl = (e * cosI - cosT) / (e * cosI + cosT);
-  const rPerp = (cosI - e * cosT) / (cosI + e * cosT);
-  return 0.5 * (rParl * rParl + rPerp * rPerp);
-}
+// The exact dielectric reflectance is optics every layer shares (the transport branches use it
+// too), so its one definition lives in the lower transport layer.
+import { fresnelDielectric } from '../../transport/fresnel.ts';
+
+export { fresnelDielectric };
 
 /** Schlick's weight (1 - cos)^5. */
 export function schlickWeight(cos: number): number {

@@ -9,7 +9,7 @@
  * (IEC 61966-2-1:1999), averaged, re-encoded and rounded; linear data and alpha are averaged as
  * stored (glTF 2.0 section 3.9: alpha is linear in every texture).
  */
-import { srgbToLinear } from '../../post/tone-mapping.ts';
+import { srgbToLinear } from '../../color/srgb.ts';
 import { fullMipCount, mipLevelSize } from './atlas-layout.ts';
 
 /** How the RGB channels of an image are encoded (alpha is always linear). */

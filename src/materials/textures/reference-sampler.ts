@@ -9,7 +9,7 @@
  * rounded f32 arithmetic does), so the reference picks exactly the texels the GPU picks; filter
  * weights and colours are then evaluated in f64.
  */
-import { srgbToLinear } from '../../post/tone-mapping.ts';
+import { srgbToLinear } from '../../color/srgb.ts';
 import {
   SAMPLER_MAG_LINEAR,
   SAMPLER_MIN_LINEAR,

@@ -1,6 +1,6 @@
 /**
- * createAnimatedSceneRenderer: the animation adventure scene (mirrored README, "Animated Scene
- * Renderer") drawn with the raster PBR renderer. The renderer-independent animation core
+ * createAnimatedSceneRenderer: the animation adventure scene (the 0.2 API's "Animated Scene
+ * Renderer", kept for its hosts) drawn with the raster PBR renderer. The renderer-independent animation core
  * (src/animation: clips, beats, route, movement, camera rigs) evaluates each frame; this module
  * uploads its joint matrices and morph weights (GPU skinning), places rigid parts, props and the
  * terrain, follows the camera rig, and completes the snapshot with what is really drawn.

@@ -10,7 +10,7 @@ import type { WavefrontPunctualLightInput, WavefrontSceneDescription, WavefrontT
 import type { RasterShadowOptions } from '../types.ts';
 
 /**
- * Options of createAnimatedSceneRenderer (names from the mirrored README): the character
+ * Options of createAnimatedSceneRenderer (the 0.2 API's names, so its hosts keep working): the character
  * (`modelAsset`, a glTF Document or GLB bytes), its clips, beats, route, props and camera rig, plus
  * the raster renderer's output and lighting options.
  */

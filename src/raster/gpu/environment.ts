@@ -5,7 +5,7 @@
  * the irradiance, and the split-sum BRDF lookup table. A uniform or black environment needs none of
  * the maps: the forward pass evaluates it exactly.
  */
-import { float32ToHalfBits } from '../../post/files/half-float.ts';
+import { float32ToHalfBits } from '../../math/half-float.ts';
 import type { EnvironmentMap } from '../../lighting/environment-map.ts';
 import { allocateStructArray, writeStruct } from '../../gpu-layout/struct-layout.ts';
 import { BufferUsage, TextureUsage } from '../../gpu/webgpu-constants.ts';

@@ -1,11 +1,13 @@
 /**
- * Raster pipelines, built from the generated programs and the binding table's group layouts:
- * forward shading (per blend mode, cull mode and winding), shadow depth, background, resolve, and
- * the compute programs (skinning, IBL precomputation).
+ * Raster pipelines, built on the shared GPU-program layer (src/shaders/program-pipelines.ts): the
+ * programs' modules (compiled once per device, WGSL errors as typed errors) and each binding set's
+ * layouts: forward shading (per blend mode, cull mode and winding), shadow depth, background,
+ * resolve, and the compute programs (skinning, IBL precomputation).
  */
-import { generatedRasterPrograms } from '../shaders/raster-programs.generated.ts';
-import type { RasterProgramName } from '../shaders/raster-programs.ts';
-import { createRasterGroupLayout } from './raster-bindings.ts';
+import { ShaderStage } from '../../gpu/webgpu-constants.ts';
+import { programLayout, programModule } from '../../shaders/program-pipelines.ts';
+import type { ProgramName } from '../../shaders/programs.ts';
+import { rasterBindings, rasterSetBindings } from './raster-bindings.ts';
 
 export const HDR_FORMAT: GPUTextureFormat = 'rgba16float';
 export const DEPTH_FORMAT: GPUTextureFormat = 'depth24plus';
@@ -39,29 +41,30 @@ export interface RasterPipelines {
   compute(name: 'skin' | 'iblDownsample' | 'iblPrefilter' | 'iblIrradiance' | 'brdfLut'): GPUComputePipeline;
 }
 
-const entryPoints = {
-  skin: 'skin_vertices',
-  iblDownsample: 'downsample',
-  iblPrefilter: 'prefilter',
-  iblIrradiance: 'project_irradiance',
-  brdfLut: 'integrate_brdf',
-} as const;
+const computePrograms = {
+  skin: { program: 'rasterSkin', entryPoint: 'skin_vertices' },
+  iblDownsample: { program: 'rasterIblDownsample', entryPoint: 'downsample' },
+  iblPrefilter: { program: 'rasterIblPrefilter', entryPoint: 'prefilter' },
+  iblIrradiance: { program: 'rasterIblIrradiance', entryPoint: 'project_irradiance' },
+  brdfLut: { program: 'rasterBrdfLut', entryPoint: 'integrate_brdf' },
+} as const satisfies Record<string, { program: ProgramName; entryPoint: string }>;
 
-export function createRasterPipelines(device: GPUDevice, sampleCount: number): RasterPipelines {
-  const modules = new Map<RasterProgramName, GPUShaderModule>();
-  const module = (name: RasterProgramName): GPUShaderModule => {
-    let m = modules.get(name);
-    if (m === undefined) {
-      m = device.createShaderModule({ label: `raster ${name}`, code: generatedRasterPrograms[name].wgsl });
-      modules.set(name, m);
-    }
-    return m;
-  };
-  const drawLayouts = [0, 1, 2].map((g) => createRasterGroupLayout(device, 'draw', g));
-  const drawPipelineLayout = device.createPipelineLayout({ label: 'raster draw', bindGroupLayouts: drawLayouts });
-  const skinLayout = createRasterGroupLayout(device, 'skin', 0);
-  const iblLayout = createRasterGroupLayout(device, 'ibl', 0);
-  const resolveLayout = createRasterGroupLayout(device, 'resolve', 0);
+const rasterPrograms = ['rasterForward', 'rasterShadow', 'rasterBackground', 'rasterResolve', ...Object.values(computePrograms).map((c) => c.program)] as const;
+type RasterProgram = (typeof rasterPrograms)[number];
+
+/** Compiles every raster program (their WGSL loads with the first renderer) and builds the layouts. */
+export async function createRasterPipelines(device: GPUDevice, sampleCount: number): Promise<RasterPipelines> {
+  const compiled = await Promise.all(rasterPrograms.map(async (name) => [name, await programModule(device, name)] as const));
+  const modules = new Map<RasterProgram, GPUShaderModule>(compiled);
+  const module = (name: RasterProgram): GPUShaderModule => modules.get(name)!;
+  // Each binding set's layouts hold the whole set, so one bind group serves every program of it.
+  const draw = programLayout(device, rasterBindings, 'rasterForward', ShaderStage.VERTEX | ShaderStage.FRAGMENT, rasterSetBindings('draw'));
+  const drawLayouts = draw.groups;
+  const drawPipelineLayout = draw.layout;
+  const skin = programLayout(device, rasterBindings, 'rasterSkin', ShaderStage.COMPUTE, rasterSetBindings('skin'));
+  const ibl = programLayout(device, rasterBindings, 'rasterIblPrefilter', ShaderStage.COMPUTE, rasterSetBindings('ibl'));
+  const resolve = programLayout(device, rasterBindings, 'rasterResolve', ShaderStage.FRAGMENT, rasterSetBindings('resolve'));
+  const [skinLayout, iblLayout, resolveLayout] = [skin.groups[0]!, ibl.groups[0]!, resolve.groups[0]!];
   const cache = new Map<string, GPURenderPipeline | GPUComputePipeline>();
   const cached = <T extends GPURenderPipeline | GPUComputePipeline>(key: string, make: () => T): T => {
     let p = cache.get(key) as T | undefined;
@@ -82,9 +85,9 @@ export function createRasterPipelines(device: GPUDevice, sampleCount: number): R
         device.createRenderPipeline({
           label: 'raster forward',
           layout: drawPipelineLayout,
-          vertex: { module: module('forward'), entryPoint: 'vs_main', buffers: vertexBufferLayouts },
+          vertex: { module: module('rasterForward'), entryPoint: 'vs_main', buffers: vertexBufferLayouts },
           fragment: {
-            module: module('forward'),
+            module: module('rasterForward'),
             entryPoint: 'fs_main',
             targets: [
               key.blend
@@ -102,7 +105,7 @@ export function createRasterPipelines(device: GPUDevice, sampleCount: number): R
         device.createRenderPipeline({
           label: 'raster shadow',
           layout: drawPipelineLayout,
-          vertex: { module: module('shadow'), entryPoint: 'vs_shadow', buffers: [vertexBufferLayouts[0]!] },
+          vertex: { module: module('rasterShadow'), entryPoint: 'vs_shadow', buffers: [vertexBufferLayouts[0]!] },
           primitive: { topology: 'triangle-list', cullMode: 'none' },
           depthStencil: { format: SHADOW_FORMAT, depthWriteEnabled: true, depthCompare: 'less' },
         }),
@@ -112,8 +115,8 @@ export function createRasterPipelines(device: GPUDevice, sampleCount: number): R
         device.createRenderPipeline({
           label: 'raster background',
           layout: drawPipelineLayout,
-          vertex: { module: module('background'), entryPoint: 'vs_background' },
-          fragment: { module: module('background'), entryPoint: 'fs_background', targets: [{ format: HDR_FORMAT }] },
+          vertex: { module: module('rasterBackground'), entryPoint: 'vs_background' },
+          fragment: { module: module('rasterBackground'), entryPoint: 'fs_background', targets: [{ format: HDR_FORMAT }] },
           primitive: { topology: 'triangle-list' },
           depthStencil: { format: DEPTH_FORMAT, depthWriteEnabled: false, depthCompare: 'less-equal' },
           multisample,
@@ -123,9 +126,9 @@ export function createRasterPipelines(device: GPUDevice, sampleCount: number): R
       cached(`resolve:${format}`, () =>
         device.createRenderPipeline({
           label: 'raster resolve',
-          layout: device.createPipelineLayout({ bindGroupLayouts: [resolveLayout] }),
-          vertex: { module: module('resolve'), entryPoint: 'vs_resolve' },
-          fragment: { module: module('resolve'), entryPoint: 'fs_resolve', targets: [{ format }] },
+          layout: resolve.layout,
+          vertex: { module: module('rasterResolve'), entryPoint: 'vs_resolve' },
+          fragment: { module: module('rasterResolve'), entryPoint: 'fs_resolve', targets: [{ format }] },
           primitive: { topology: 'triangle-list' },
         }),
       ),
@@ -133,8 +136,8 @@ export function createRasterPipelines(device: GPUDevice, sampleCount: number): R
       cached(`compute:${name}`, () =>
         device.createComputePipeline({
           label: `raster ${name}`,
-          layout: device.createPipelineLayout({ bindGroupLayouts: [name === 'skin' ? skinLayout : iblLayout] }),
-          compute: { module: module(name), entryPoint: entryPoints[name] },
+          layout: name === 'skin' ? skin.layout : ibl.layout,
+          compute: { module: module(computePrograms[name].program), entryPoint: computePrograms[name].entryPoint },
         }),
       ),
   };

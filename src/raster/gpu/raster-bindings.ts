@@ -5,19 +5,14 @@
  * declarations (`package::raster::generated_layout`) and the bind group layouts are both generated
  * from this table.
  */
+import type { BindingSpec } from '../../gpu-layout/bindings.ts';
 import { ShaderStage } from '../../gpu/webgpu-constants.ts';
 import { rasterTextureSlots } from './raster-layout.ts';
 
 export type RasterBindingSet = 'draw' | 'skin' | 'ibl' | 'resolve';
 
-type Resource =
-  | { kind: 'uniform'; type: string; dynamic?: boolean }
-  | { kind: 'storage'; type: string; access: 'read' | 'read_write' }
-  | { kind: 'texture'; type: string; sampleType: GPUTextureSampleType }
-  | { kind: 'sampler'; comparison?: boolean }
-  | { kind: 'storageTexture'; format: GPUTextureFormat };
-
-export type RasterBindingSpec = { set: RasterBindingSet; group: number; binding: number; visibility: number; doc: string } & Resource;
+/** A raster binding: a binding table entry with the set it belongs to and its stages. */
+export type RasterBindingSpec = BindingSpec & { set: RasterBindingSet; visibility: number };
 
 const VF = ShaderStage.VERTEX | ShaderStage.FRAGMENT;
 const F = ShaderStage.FRAGMENT;
@@ -64,50 +59,13 @@ export const rasterBindings: Record<string, RasterBindingSpec> = {
   hdrColor: { set: 'resolve', group: 0, binding: 1, visibility: F, kind: 'texture', type: 'texture_2d<f32>', sampleType: 'unfilterable-float', doc: 'resolved linear radiance' },
 };
 
-/** The WGSL declaration of one binding. */
-export function rasterBindingDeclaration(name: string, spec: RasterBindingSpec): string {
-  const at = `@group(${spec.group}) @binding(${spec.binding})`;
-  const comment = `// ${spec.doc}`;
-  switch (spec.kind) {
-    case 'uniform':
-      return `${comment}\n${at} var<uniform> ${name}: ${spec.type};`;
-    case 'storage':
-      return `${comment}\n${at} var<storage, ${spec.access}> ${name}: ${spec.type};`;
-    case 'texture':
-      return `${comment}\n${at} var ${name}: ${spec.type};`;
-    case 'sampler':
-      return `${comment}\n${at} var ${name}: ${spec.comparison ? 'sampler_comparison' : 'sampler'};`;
-    case 'storageTexture':
-      return `${comment}\n${at} var ${name}: texture_storage_2d<${spec.format}, write>;`;
-  }
-}
-
-function layoutEntry(spec: RasterBindingSpec): GPUBindGroupLayoutEntry {
-  const base = { binding: spec.binding, visibility: spec.visibility };
-  switch (spec.kind) {
-    case 'uniform':
-      return { ...base, buffer: { type: 'uniform', hasDynamicOffset: spec.dynamic === true } };
-    case 'storage':
-      return { ...base, buffer: { type: spec.access === 'read' ? 'read-only-storage' : 'storage' } };
-    case 'texture':
-      return { ...base, texture: { sampleType: spec.sampleType, viewDimension: '2d' } };
-    case 'sampler':
-      return { ...base, sampler: { type: spec.comparison ? 'comparison' : 'filtering' } };
-    case 'storageTexture':
-      return { ...base, storageTexture: { access: 'write-only', format: spec.format, viewDimension: '2d' } };
-  }
-}
-
-/** Binding names of one bind group of a set, in binding order. */
-export function rasterGroupBindings(set: RasterBindingSet, group: number): string[] {
+/**
+ * Every binding of a set: the programs of a set share their bind group layouts (the draw passes
+ * bind one set of groups to the forward, shadow and background pipelines), so the layouts hold
+ * the set's whole table rather than one program's reflected bindings.
+ */
+export function rasterSetBindings(set: RasterBindingSet): string[] {
   return Object.entries(rasterBindings)
-    .filter(([, s]) => s.set === set && s.group === group)
-    .sort((a, b) => a[1].binding - b[1].binding)
+    .filter(([, s]) => s.set === set)
     .map(([name]) => name);
-}
-
-/** Bind group layout of one group of a set: every binding the table lists for it. */
-export function createRasterGroupLayout(device: GPUDevice, set: RasterBindingSet, group: number): GPUBindGroupLayout {
-  const entries = rasterGroupBindings(set, group).map((name) => layoutEntry(rasterBindings[name]!));
-  return device.createBindGroupLayout({ label: `raster ${set} group ${group}`, entries });
 }

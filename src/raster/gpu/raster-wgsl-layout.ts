@@ -4,7 +4,8 @@
  * (raster-layout.ts, raster-bindings.ts), so a struct, constant or binding has one definition.
  */
 import { structLayoutToWgsl } from '../../gpu-layout/struct-layout.ts';
-import { rasterBindingDeclaration, rasterBindings } from './raster-bindings.ts';
+import { bindingDeclaration } from '../../gpu-layout/bindings.ts';
+import { rasterBindings } from './raster-bindings.ts';
 import { rasterConstants, rasterRecordLayouts } from './raster-layout.ts';
 
 /** Module key of the generated layout (linker source path). */
@@ -16,7 +17,7 @@ export function rasterLayoutModule(): string {
     .map(([name, value]) => `const ${name}: u32 = ${value >>> 0}u;`)
     .join('\n');
   const bindings = Object.entries(rasterBindings)
-    .map(([name, spec]) => rasterBindingDeclaration(name, spec))
+    .map(([name, spec]) => bindingDeclaration(name, spec))
     .join('\n');
   return `${structs}\n${constants}\n\n${bindings}\n`;
 }

@@ -6,7 +6,8 @@ import { join } from 'node:path';
 import { Document } from '@gltf-transform/core';
 import { KHRLightsPunctual } from '@gltf-transform/extensions';
 import { encode as encodePng } from 'fast-png';
-import { parseGltfReferences, resolveGltfReferences } from '../../../src/io/index.ts';
+import { resolveGltfReferences } from '../../../src/io/index.ts';
+import { parseGltfReferences } from '../../../src/scene/index.ts';
 import { GpuRendererError } from '../../../src/errors/gpu-renderer-error.ts';
 import { assertClose, quadMesh, rejectsWith, toGlb } from './helpers.ts';
 
