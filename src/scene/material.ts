@@ -1,7 +1,7 @@
 import type { GpuRendererErrorCode } from '../errors/gpu-renderer-error.ts';
 import { describe, fail, isArrayLike, requireFiniteNumber, requireNumberInRange } from '../errors/validate.ts';
 import { maxRadiance } from './limits.ts';
-import { identityTextureTransform, textureTransformMatrix, type TextureTransformRows } from '../materials/textures/texture-transform.ts';
+import { identityTextureTransform, textureTransformMatrix, type TextureTransformRows } from './texture-transform.ts';
 import type { Vec4Input, WavefrontAlphaMode, WavefrontMaterialInput, WavefrontTextureRefInput } from './types.ts';
 
 /** A validated texture reference: which texture, which uv set, the uv transform, scale/strength. */

@@ -10,8 +10,8 @@
  * [0.5, 0.5] shows the lower left quadrant rotated clockwise 90 degrees) and the one glTF viewers
  * use; the extension's GLSL snippet read as column-major GLSL would give the opposite sign.
  */
-import { requireFiniteNumber, requireVec } from '../../errors/validate.ts';
-import type { WavefrontTextureTransformInput } from '../../scene/types.ts';
+import { requireFiniteNumber, requireVec } from '../errors/validate.ts';
+import type { WavefrontTextureTransformInput } from './types.ts';
 
 export type Vec3Row = [number, number, number];
 
