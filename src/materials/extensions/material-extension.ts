@@ -49,6 +49,9 @@ export interface TextureSpec {
   readonly scaleGetter?: string;
 }
 
+/** The precomputed tables of the materials heap (see pathtracer/scene/pack-materials.ts). */
+export type MaterialTableName = 'ggx' | 'dielectric' | 'dielectricTransmission' | 'clearcoat' | 'sheen' | 'media' | 'spectral';
+
 /** Binds a texture reference into the heap (TextureBinding offset or INDEX_NONE). */
 export type BindTexture = (ref: NormalizedTextureRef | undefined, srgb: boolean) => number;
 
@@ -64,8 +67,6 @@ export interface BlockSpec<Block> {
   readonly layout: StructLayout;
   /** The block's field values for a material (texture slots bound through `bind`). */
   readonly pack: (block: Block, bind: BindTexture, context: PackContext) => Record<string, number | ArrayLike<number>>;
-  /** Whether a present extension gets its block (volume: only a solid with a medium). */
-  readonly packed?: (context: PackContext) => boolean;
 }
 
 /**
@@ -97,14 +98,26 @@ export interface MaterialExtensionSpec<Block = never> {
   readonly flag: { readonly name: `MATERIAL_FLAG_${string}`; readonly bit: number };
   /** Its heap block; none for an extension stored in MaterialCore itself (dispersion). */
   readonly block?: BlockSpec<Block>;
+  /**
+   * Whether a present extension reaches the GPU (its flag and block) in this context; default
+   * always (volume and dispersion: only a solid with a medium).
+   */
+  readonly packed?: (context: PackContext) => boolean;
+  /**
+   * It adds or changes a rough microfacet lobe, so multiple-scattering energy compensation applies
+   * to a material that has it.
+   */
+  readonly compensable: boolean;
+  /** The material tables (MaterialTables entries) a scene using it needs. */
+  readonly tables?: readonly MaterialTableName[];
   /** Whether the raster renderer draws it (as the Khronos sample viewer does) or refuses it. */
   readonly raster: 'drawn' | 'refused';
 }
 
 /** The data part of an extension (what its literal types are inferred from). */
-type ExtensionShape = Omit<MaterialExtensionSpec<never>, 'present' | 'block'>;
+type ExtensionShape = Omit<MaterialExtensionSpec<never>, 'present' | 'block' | 'packed'>;
 /** The behaviour part, typed by the data part's normalized block. */
-type ExtensionBehaviour<Block> = Pick<MaterialExtensionSpec<Block>, 'present' | 'block'>;
+type ExtensionBehaviour<Block> = Pick<MaterialExtensionSpec<Block>, 'present' | 'block' | 'packed'>;
 
 /**
  * Declares an extension: its data (literal types kept, so the material types follow from it), then

@@ -20,6 +20,7 @@ export const anisotropy = defineMaterialExtension({
   enabledBy: 'anisotropyStrength',
   feature: { name: 'FEATURE_ANISOTROPY', doc: 'KHR_materials_anisotropy (anisotropic GGX)' },
   flag: { name: 'MATERIAL_FLAG_ANISOTROPY', bit: 14 },
+  compensable: true,
   raster: 'refused',
 }, {
   present: (b) => b.strength > 0,

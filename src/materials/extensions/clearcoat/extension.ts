@@ -28,6 +28,8 @@ export const clearcoat = defineMaterialExtension({
   enabledBy: 'clearcoatFactor',
   feature: { name: 'FEATURE_CLEARCOAT', doc: 'KHR_materials_clearcoat' },
   flag: { name: 'MATERIAL_FLAG_CLEARCOAT', bit: 11 },
+  compensable: true,
+  tables: ['clearcoat'],
   raster: 'drawn',
 }, {
   present: (b) => b.factor > 0,

@@ -25,6 +25,7 @@ export const diffuseTransmission = defineMaterialExtension({
   enabledBy: 'diffuseTransmissionFactor',
   feature: { name: 'FEATURE_DIFFUSE_TRANSMISSION', doc: 'KHR_materials_diffuse_transmission' },
   flag: { name: 'MATERIAL_FLAG_DIFFUSE_TRANSMISSION', bit: 15 },
+  compensable: true,
   raster: 'refused',
 }, {
   present: (b) => b.factor > 0,

@@ -13,7 +13,10 @@ export const dispersion = defineMaterialExtension({
   enabledBy: 'dispersion',
   feature: { name: 'FEATURE_DISPERSION', doc: 'KHR_materials_dispersion: paths that meet it carry one wavelength' },
   flag: { name: 'MATERIAL_FLAG_DISPERSION', bit: 16 },
+  compensable: false,
+  tables: ['spectral'],
   raster: 'refused',
 }, {
+  packed: (c) => c.medium !== undefined,
   present: (d, m) => d > 0 && m.volume !== undefined,
 });

@@ -29,6 +29,7 @@ export const iridescence = defineMaterialExtension({
   enabledBy: 'iridescenceFactor',
   feature: { name: 'FEATURE_IRIDESCENCE', doc: 'KHR_materials_iridescence (thin-film Fresnel)' },
   flag: { name: 'MATERIAL_FLAG_IRIDESCENCE', bit: 13 },
+  compensable: true,
   raster: 'refused',
 }, {
   present: (b) => b.factor > 0,

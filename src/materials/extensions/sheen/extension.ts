@@ -25,6 +25,8 @@ export const sheen = defineMaterialExtension({
   enabledBy: 'sheenColorFactor',
   feature: { name: 'FEATURE_SHEEN', doc: 'KHR_materials_sheen (Charlie)' },
   flag: { name: 'MATERIAL_FLAG_SHEEN', bit: 12 },
+  compensable: true,
+  tables: ['sheen'],
   raster: 'drawn',
 }, {
   present: (b) => b.colorFactor.some((c) => c > 0),

@@ -25,6 +25,7 @@ export const specular = defineMaterialExtension({
   enabledBy: 'specularFactor',
   feature: { name: 'FEATURE_SPECULAR', doc: 'KHR_materials_specular: specular weight and F0 colour' },
   flag: { name: 'MATERIAL_FLAG_SPECULAR', bit: 8 },
+  compensable: true,
   raster: 'drawn',
 }, {
   // Present whenever it changes the material: any factor off its default, or a texture.

@@ -17,6 +17,7 @@ export const transmission = defineMaterialExtension({
   enabledBy: 'transmissionFactor',
   feature: { name: 'FEATURE_TRANSMISSION', doc: 'KHR_materials_transmission: thin-walled and refractive GGX transmission' },
   flag: { name: 'MATERIAL_FLAG_TRANSMISSION', bit: 9 },
+  compensable: true,
   raster: 'drawn',
 }, {
   present: (b) => b.factor > 0,

@@ -29,12 +29,14 @@ export const volume = defineMaterialExtension({
   enabledBy: 'thicknessFactor',
   feature: { name: 'FEATURE_VOLUME', doc: 'KHR_materials_volume: refractive solids, nested media, Beer-Lambert absorption' },
   flag: { name: 'MATERIAL_FLAG_VOLUME', bit: 10 },
+  compensable: false,
+  tables: ['media'],
   raster: 'drawn',
 }, {
+  packed: (c) => c.medium !== undefined,
   present: (b, m) => b.thicknessFactor > 0 && (m.transmission !== undefined || m.diffuseTransmission !== undefined),
   block: {
     layout: volumeBlockLayout,
-    packed: (c) => c.medium !== undefined,
     pack: (b, bind, c) => ({ attenuation: absorptionCoefficient(b), thickness: b.thicknessFactor, thicknessTexture: bind(b.thicknessTexture, false), medium: c.medium! }),
   },
 });
