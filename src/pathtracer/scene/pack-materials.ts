@@ -18,7 +18,7 @@ import { defineStructLayout, type StructLayout } from '../../gpu-layout/struct-l
 import type { Vec4Heap } from '../../gpu-layout/vec4-heap.ts';
 import type { AlbedoTables } from '../../materials/energy/albedo-tables.ts';
 import { packedAlbedoTable } from '../../materials/energy/table-lookup.ts';
-import { spectralResponseTable } from '../../materials/spectral/spectral-response.ts';
+import { spectralResponseTable } from '../../materials/extensions/dispersion/spectral-response.ts';
 import { materialTextureRefs, type NormalizedMaterial, type NormalizedTextureRef } from '../../scene/material.ts';
 
 /** Heap offset of the TextureInfo of texture `texture` decoded as sRGB or linear data. */
