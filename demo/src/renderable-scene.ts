@@ -11,8 +11,14 @@ import {
   type WavefrontPathTracingRenderer,
 } from '@plasius/gpu-renderer';
 
-/** Material keys of the KHR extensions (the renderer accepts or refuses each one by name). */
-const extensionKeyPattern = /^(specular|transmission|thickness|attenuation|clearcoat|sheen|dispersion|iridescence|anisotropy|diffuseTransmission)/;
+/**
+ * The glTF core material keys; every other material key belongs to a KHR extension (the renderer
+ * accepts or refuses each one by name), which the demo may leave out.
+ */
+const coreMaterialKeys = new Set([
+  'name', 'baseColorFactor', 'baseColorTexture', 'metallicFactor', 'roughnessFactor', 'metallicRoughnessTexture', 'normalTexture',
+  'occlusionTexture', 'emissiveFactor', 'emissiveTexture', 'emissiveStrength', 'ior', 'doubleSided', 'alphaMode', 'alphaCutoff',
+]);
 
 export interface RenderableScene {
   renderer: WavefrontPathTracingRenderer;
@@ -41,8 +47,9 @@ function withoutRefused(options: WavefrontPathTracingOptions, error: GpuRenderer
     omitted.push(`${options.lights.length} punctual light(s): not rendered by this version (emissive surfaces and the environment light the scene)`);
     return { ...options, lights: [] };
   }
-  const key = field.split('.').pop() ?? '';
-  if (error.code === 'INVALID_MATERIAL' && extensionKeyPattern.test(key)) {
+  // The refused key, without a component index (sheenColorFactor[2]).
+  const key = (field.split('.').pop() ?? '').replace(/\[\d+\]$/, '');
+  if (error.code === 'INVALID_MATERIAL' && field.includes('.') && !coreMaterialKeys.has(key)) {
     omitted.push(`material ${key}: not rendered by this version (${error.message})`);
     const strip = (m: WavefrontMaterialInput): WavefrontMaterialInput => {
       if (!(key in m)) return m;

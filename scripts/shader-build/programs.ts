@@ -66,24 +66,27 @@ ${interfaces.join('\n')}
   );
 
   mkdirSync(new URL('wgsl/', shaders), { recursive: true });
-  const eager: string[] = [];
-  const lazy: string[] = [];
+  const inShaderSource: string[] = [];
+  const loaders: string[] = [];
   for (const [group, entries] of wgslByGroup) {
-    const { file, loading } = programGroups[group];
+    const { file, shaderSource } = programGroups[group];
     writeIfChanged(new URL(`wgsl/${file}.generated.ts`, shaders), `${header}export const wgsl = {\n${entries.join('\n')}\n} as const;\n`);
-    if (loading === 'eager') eager.push(group);
-    else lazy.push(`  ${group}: () => import('./wgsl/${file}.generated.ts'),`);
+    if (shaderSource) inShaderSource.push(group);
+    loaders.push(`  ${group}: () => import('./wgsl/${file}.generated.ts'),`);
   }
   writeIfChanged(
     new URL('program-sources.generated.ts', shaders),
-    `${header}${eager.map((g) => `import { wgsl as ${g} } from './wgsl/${programGroups[g as ProgramGroupName].file}.generated.ts';\n`).join('')}
-/** The linked WGSL of the groups loaded eagerly (src/shaders/programs.ts), by program. */
-export const eagerProgramWgsl = { ${eager.map((g) => `...${g}`).join(', ')} } as const;
-
-/** The other groups' modules, each a chunk of its own in a bundle, imported on first use. */
-export const lazyProgramWgsl = {
-${lazy.join('\n')}
+    `${header}/** Every group's module, each a chunk of its own in a bundle, imported on first use. */
+export const programWgslModules = {
+${loaders.join('\n')}
 } as const;
+`,
+  );
+  writeIfChanged(
+    new URL('shader-source.generated.ts', shaders),
+    `${header}${inShaderSource.map((g) => `import { wgsl as ${g} } from './wgsl/${programGroups[g as ProgramGroupName].file}.generated.ts';\n`).join('')}
+/** The linked WGSL of the groups createWavefrontPathTracingComputeShaderSource() returns, by program. */
+export const shaderSourceWgsl = { ${inShaderSource.map((g) => `...${g}`).join(', ')} } as const;
 `,
   );
   return interfaces.length;

@@ -3,6 +3,18 @@
  * kind id and size both sides must agree on. The `package::layout::constants` WGSL module is
  * generated from `gpuConstants` (see scripts/shader-build/layout-modules.ts), so nothing is kept equal by comment.
  */
+import {
+  anisotropy,
+  anyMaterialExtensions,
+  clearcoat,
+  diffuseTransmission,
+  dispersion,
+  iridescence,
+  sheen,
+  specular,
+  transmission,
+  volume,
+} from '../materials/extensions/index.ts';
 
 /**
  * Statistics words at the head of the `queues` buffer (atomics in WGSL), read back per frame.
@@ -134,22 +146,29 @@ export const TEXTURE_BINDING_FLAG_SRGB = 1;
  * extension's factors make a difference). SurfaceRecord.flags carries the same bits (above the
  * SURFACE_FLAG_* bits), so the scatter kernel knows which packed parameters and blocks to read.
  */
-export const MATERIAL_FLAG_SPECULAR = 1 << 8;
-export const MATERIAL_FLAG_TRANSMISSION = 1 << 9;
+// Each registry extension declares its bit (materials/extensions/<name>/extension.ts).
+export const MATERIAL_FLAG_SPECULAR = extensionFlag(specular);
+export const MATERIAL_FLAG_TRANSMISSION = extensionFlag(transmission);
 /** A refractive solid: KHR_materials_volume with thicknessFactor > 0 and some transmission. */
-export const MATERIAL_FLAG_VOLUME = 1 << 10;
-export const MATERIAL_FLAG_CLEARCOAT = 1 << 11;
-export const MATERIAL_FLAG_SHEEN = 1 << 12;
-export const MATERIAL_FLAG_IRIDESCENCE = 1 << 13;
-export const MATERIAL_FLAG_ANISOTROPY = 1 << 14;
-export const MATERIAL_FLAG_DIFFUSE_TRANSMISSION = 1 << 15;
-export const MATERIAL_FLAG_DISPERSION = 1 << 16;
+export const MATERIAL_FLAG_VOLUME = extensionFlag(volume);
+export const MATERIAL_FLAG_CLEARCOAT = extensionFlag(clearcoat);
+export const MATERIAL_FLAG_SHEEN = extensionFlag(sheen);
+export const MATERIAL_FLAG_IRIDESCENCE = extensionFlag(iridescence);
+export const MATERIAL_FLAG_ANISOTROPY = extensionFlag(anisotropy);
+export const MATERIAL_FLAG_DIFFUSE_TRANSMISSION = extensionFlag(diffuseTransmission);
+export const MATERIAL_FLAG_DISPERSION = extensionFlag(dispersion);
 /** Multiple-scattering energy compensation (the renderer's energyCompensation option). */
 export const MATERIAL_FLAG_ENERGY_COMPENSATION = 1 << 17;
 /** KHR_materials_ior ior = 0: the specular-glossiness compatibility mode, Fresnel = 1. */
 export const MATERIAL_FLAG_IOR_INFINITE = 1 << 18;
+/** The flag constants of every registry extension, by name (MATERIAL_FLAG_<NAME>: bit). */
+const materialExtensionFlags: Record<string, number> = Object.fromEntries(anyMaterialExtensions.map((e) => [e.flag.name, extensionFlag(e)]));
 /** Every extension bit (what evaluate-materials copies into SurfaceRecord.flags). */
-export const MATERIAL_EXTENSION_MASK = 0x7ff00;
+export const MATERIAL_EXTENSION_MASK = Object.values(materialExtensionFlags).reduce((a, b) => a | b, MATERIAL_FLAG_ENERGY_COMPENSATION | MATERIAL_FLAG_IOR_INFINITE);
+
+function extensionFlag(e: { flag: { bit: number } }): number {
+  return 1 << e.flag.bit;
+}
 
 /** Heap offset of the MaterialTables directory (the tables, when present, open the heap). */
 export const MATERIAL_TABLES_OFFSET = 0;
@@ -321,15 +340,7 @@ export const gpuConstants: Readonly<Record<string, number>> = Object.freeze({
   ALPHA_MODE_MASK,
   ALPHA_MODE_BLEND,
   TEXTURE_BINDING_FLAG_SRGB,
-  MATERIAL_FLAG_SPECULAR,
-  MATERIAL_FLAG_TRANSMISSION,
-  MATERIAL_FLAG_VOLUME,
-  MATERIAL_FLAG_CLEARCOAT,
-  MATERIAL_FLAG_SHEEN,
-  MATERIAL_FLAG_IRIDESCENCE,
-  MATERIAL_FLAG_ANISOTROPY,
-  MATERIAL_FLAG_DIFFUSE_TRANSMISSION,
-  MATERIAL_FLAG_DISPERSION,
+  ...materialExtensionFlags,
   MATERIAL_FLAG_ENERGY_COMPENSATION,
   MATERIAL_FLAG_IOR_INFINITE,
   MATERIAL_EXTENSION_MASK,

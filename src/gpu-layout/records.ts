@@ -1,4 +1,5 @@
-import { defineStructLayout, type StructLayout } from './struct-layout.ts';
+import { anyMaterialExtensions } from '../materials/extensions/index.ts';
+import { defineStructLayout, type StructFieldSpec, type StructLayout } from './struct-layout.ts';
 import { VERTEX_COLOR_WORDS, VERTEX_NORMAL_WORDS, VERTEX_POSITION_WORDS, VERTEX_TANGENT_WORDS, VERTEX_UV_WORDS } from './constants.ts';
 
 /**
@@ -110,100 +111,19 @@ export const materialCoreLayout: StructLayout = defineStructLayout('MaterialCore
   ['metallicRoughnessTexture', 'u32'],
   ['normalTexture', 'u32'],
   ['emissiveTexture', 'u32'],
-  ['specular', 'u32', 'SpecularBlock heap offset (INDEX_NONE: absent)'],
-  ['transmission', 'u32', 'TransmissionBlock heap offset or INDEX_NONE'],
-  ['volume', 'u32', 'VolumeBlock'],
-  ['clearcoat', 'u32', 'ClearcoatBlock'],
-  ['sheen', 'u32', 'SheenBlock'],
-  ['iridescence', 'u32', 'IridescenceBlock'],
-  ['anisotropy', 'u32', 'AnisotropyBlock'],
-  ['diffuseTransmission', 'u32', 'DiffuseTransmissionBlock'],
+  // One heap offset (INDEX_NONE: absent) per registry extension with a block, named by its key.
+  ...extensionBlockOffsetFields(),
   ['dispersion', 'f32', 'KHR_materials_dispersion (20 / Abbe number)'],
   ['reserved', 'u32'],
 ]);
 
-// KHR material extension blocks (heap records a MaterialCore points to). Factors are the glTF
-// factors; textures are TextureBinding heap offsets or INDEX_NONE.
+// KHR material extension blocks (heap records a MaterialCore points to) are declared with their
+// extensions (materials/extensions/<name>/extension.ts).
+const extensionBlockLayouts: StructLayout[] = anyMaterialExtensions.flatMap((e) => (e.block ? [e.block.layout] : []));
 
-/** KHR_materials_specular. */
-export const specularBlockLayout: StructLayout = defineStructLayout('SpecularBlock', 1, [
-  ['specularColor', 'vec3f', 'specularColorFactor (may exceed 1)'],
-  ['specular', 'f32', 'specularFactor'],
-  ['specularTexture', 'u32', 'A channel'],
-  ['specularColorTexture', 'u32', 'RGB, sRGB'],
-  ['reserved0', 'u32'],
-  ['reserved1', 'u32'],
-]);
-
-/** KHR_materials_transmission. */
-export const transmissionBlockLayout: StructLayout = defineStructLayout('TransmissionBlock', 1, [
-  ['transmission', 'f32', 'transmissionFactor'],
-  ['transmissionTexture', 'u32', 'R channel'],
-  ['reserved0', 'u32'],
-  ['reserved1', 'u32'],
-]);
-
-/** KHR_materials_volume: present only for a refractive solid (thicknessFactor > 0). */
-export const volumeBlockLayout: StructLayout = defineStructLayout('VolumeBlock', 1, [
-  ['attenuation', 'vec3f', 'absorption coefficient -ln(attenuationColor) / attenuationDistance per unit length'],
-  ['thickness', 'f32', 'thicknessFactor (the path tracer takes thickness from the geometry)'],
-  ['thicknessTexture', 'u32', 'G channel (loaded for raster renderers)'],
-  ['medium', 'u32', 'medium id (1-based index into the media table)'],
-  ['reserved0', 'u32'],
-  ['reserved1', 'u32'],
-]);
-
-/** KHR_materials_clearcoat. */
-export const clearcoatBlockLayout: StructLayout = defineStructLayout('ClearcoatBlock', 1, [
-  ['clearcoat', 'f32', 'clearcoatFactor'],
-  ['roughness', 'f32', 'clearcoatRoughnessFactor'],
-  ['clearcoatTexture', 'u32', 'R channel'],
-  ['roughnessTexture', 'u32', 'G channel'],
-  ['normalTexture', 'u32', 'tangent-space normal map of the coat (scale in the binding)'],
-  ['reserved0', 'u32'],
-  ['reserved1', 'u32'],
-  ['reserved2', 'u32'],
-]);
-
-/** KHR_materials_sheen. */
-export const sheenBlockLayout: StructLayout = defineStructLayout('SheenBlock', 1, [
-  ['color', 'vec3f', 'sheenColorFactor'],
-  ['roughness', 'f32', 'sheenRoughnessFactor'],
-  ['colorTexture', 'u32', 'RGB, sRGB'],
-  ['roughnessTexture', 'u32', 'A channel'],
-  ['reserved0', 'u32'],
-  ['reserved1', 'u32'],
-]);
-
-/** KHR_materials_iridescence. */
-export const iridescenceBlockLayout: StructLayout = defineStructLayout('IridescenceBlock', 1, [
-  ['iridescence', 'f32', 'iridescenceFactor'],
-  ['ior', 'f32', 'iridescenceIor of the thin film'],
-  ['thicknessMinimum', 'f32', 'nanometres at thickness texture G = 0'],
-  ['thicknessMaximum', 'f32', 'nanometres at G = 1 (and without a texture)'],
-  ['iridescenceTexture', 'u32', 'R channel'],
-  ['thicknessTexture', 'u32', 'G channel'],
-  ['reserved0', 'u32'],
-  ['reserved1', 'u32'],
-]);
-
-/** KHR_materials_anisotropy. */
-export const anisotropyBlockLayout: StructLayout = defineStructLayout('AnisotropyBlock', 1, [
-  ['strength', 'f32', 'anisotropyStrength'],
-  ['rotationCos', 'f32', 'cos(anisotropyRotation)'],
-  ['rotationSin', 'f32', 'sin(anisotropyRotation)'],
-  ['texture', 'u32', 'RG direction in [-1, 1] tangent space, B strength'],
-]);
-
-/** KHR_materials_diffuse_transmission. */
-export const diffuseTransmissionBlockLayout: StructLayout = defineStructLayout('DiffuseTransmissionBlock', 1, [
-  ['color', 'vec3f', 'diffuseTransmissionColorFactor'],
-  ['diffuseTransmission', 'f32', 'diffuseTransmissionFactor'],
-  ['texture', 'u32', 'A channel'],
-  ['colorTexture', 'u32', 'RGB, sRGB'],
-  ['reserved0', 'u32'],
-  ['reserved1', 'u32'],
-]);
+function extensionBlockOffsetFields(): StructFieldSpec[] {
+  return anyMaterialExtensions.flatMap((e): StructFieldSpec[] => (e.block ? [[e.key, 'u32', `${e.block.layout.name} heap offset (${e.name})`]] : []));
+}
 
 /** One interior medium (a KHR_materials_volume material): what a path inside it sees. */
 export const mediumRecordLayout: StructLayout = defineStructLayout('MediumRecord', 1, [
@@ -678,14 +598,7 @@ export const wavefrontRecordLayouts = {
   AlphaPrimitive: alphaPrimitiveLayout,
   Instance: instanceLayout,
   MaterialCore: materialCoreLayout,
-  SpecularBlock: specularBlockLayout,
-  TransmissionBlock: transmissionBlockLayout,
-  VolumeBlock: volumeBlockLayout,
-  ClearcoatBlock: clearcoatBlockLayout,
-  SheenBlock: sheenBlockLayout,
-  IridescenceBlock: iridescenceBlockLayout,
-  AnisotropyBlock: anisotropyBlockLayout,
-  DiffuseTransmissionBlock: diffuseTransmissionBlockLayout,
+  ...(Object.fromEntries(extensionBlockLayouts.map((l) => [l.name, l])) as Record<string, StructLayout>),
   MediumRecord: mediumRecordLayout,
   MaterialTables: materialTablesLayout,
   TextureInfo: textureInfoLayout,
@@ -722,9 +635,7 @@ export const wavefrontRecordLayouts = {
 /** Records stored in vec4 heaps get generated WGSL loaders (`load_<snake name>(heap offset)`). */
 export const heapRecordLayouts = {
   materials: [
-    materialCoreLayout, textureInfoLayout, textureBindingLayout, specularBlockLayout, transmissionBlockLayout, volumeBlockLayout,
-    clearcoatBlockLayout, sheenBlockLayout, iridescenceBlockLayout, anisotropyBlockLayout, diffuseTransmissionBlockLayout,
-    mediumRecordLayout, materialTablesLayout,
+    materialCoreLayout, textureInfoLayout, textureBindingLayout, ...extensionBlockLayouts, mediumRecordLayout, materialTablesLayout,
   ],
   lights: [lightRecordLayout, lightSelectionEntryLayout, areaLightLayout, punctualLightLayout, lightTreeNodeLayout, environmentTableEntryLayout, environmentPortalLayout],
 } as const;

@@ -32,10 +32,11 @@ import {
   lookupGgxAlbedo,
   lookupSheenAlbedo,
 } from './energy/table-lookup.ts';
-import { dielectricFresnelRgb, fresnelDielectric, fresnelSchlick, iorToF0, iridescentFresnel } from './reference/fresnel.ts';
+import { iridescentFresnel } from './extensions/iridescence/reference.ts';
+import { dielectricFresnelRgb, fresnelDielectric, fresnelSchlick, iorToF0 } from './reference/fresnel.ts';
 import { anisotropicAlphas, ggxDAniso, ggxG2, ggxVisibleNormalPdf, ggxVisibleNormalSamplePoint, sampleGgxVisibleNormal, type Alphas } from './reference/microfacet.ts';
 import { lobeAlphas } from './reference/lobes.ts';
-import { sheenBrdf } from './reference/sheen.ts';
+import { sheenBrdf } from './extensions/sheen/reference.ts';
 import { cross, maxComponent, normalize as normalize3 } from './reference/vector.ts';
 
 export { fresnelDielectric };

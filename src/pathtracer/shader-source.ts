@@ -1,7 +1,7 @@
-import { eagerProgramWgsl } from '../shaders/program-sources.generated.ts';
-import type { EagerProgramName } from '../shaders/programs.ts';
+import { shaderSourceWgsl } from '../shaders/shader-source.generated.ts';
+import type { ShaderSourceProgramName } from '../shaders/programs.ts';
 
-export type WavefrontShaderSources = Record<EagerProgramName, string>;
+export type WavefrontShaderSources = Record<ShaderSourceProgramName, string>;
 
 /**
  * The linked WGSL of the path tracer's programs, as the build's WESL linker produced them from
@@ -11,5 +11,5 @@ export type WavefrontShaderSources = Record<EagerProgramName, string>;
  * when it first uses them.
  */
 export function createWavefrontPathTracingComputeShaderSource(): WavefrontShaderSources {
-  return { ...eagerProgramWgsl };
+  return { ...shaderSourceWgsl };
 }

@@ -1,91 +1,46 @@
 import type { GpuRendererErrorCode } from '../errors/gpu-renderer-error.ts';
+import type { NormalizedTextureRef } from './texture-refs.ts';
+export type { NormalizedTextureRef };
 import { describe, fail, isArrayLike, requireFiniteNumber, requireNumberInRange } from '../errors/validate.ts';
 import { maxRadiance } from './limits.ts';
-import { identityTextureTransform, textureTransformMatrix, type TextureTransformRows } from '../materials/textures/texture-transform.ts';
+import { identityTextureTransform, textureTransformMatrix } from './texture-transform.ts';
 import type { Vec4Input, WavefrontAlphaMode, WavefrontMaterialInput, WavefrontTextureRefInput } from './types.ts';
+import {
+  anyMaterialExtensions,
+  type anisotropy,
+  type clearcoat,
+  type diffuseTransmission,
+  type FactorSpec,
+  type iridescence,
+  type NormalizedExtension,
+  type NormalizedMaterialExtensions,
+  type sheen,
+  type specular,
+  type transmission,
+  type volume,
+} from '../materials/extensions/index.ts';
 
-/** A validated texture reference: which texture, which uv set, the uv transform, scale/strength. */
-export interface NormalizedTextureRef {
-  texture: number;
-  texCoord: 0 | 1;
-  transform: TextureTransformRows;
-  /** normalTexture.scale or occlusionTexture.strength (1 otherwise). */
-  scale: number;
-}
 
-/** KHR_materials_specular (present when it changes the material). */
-export interface NormalizedSpecular {
-  factor: number;
-  /** Linear RGB; may exceed 1 (the product with the IOR's F0 is clamped to 1). */
-  colorFactor: [number, number, number];
-  texture?: NormalizedTextureRef;
-  colorTexture?: NormalizedTextureRef;
-}
-
-/** KHR_materials_transmission (present when transmissionFactor > 0). */
-export interface NormalizedTransmission {
-  factor: number;
-  texture?: NormalizedTextureRef;
-}
-
-/** KHR_materials_volume (present when thicknessFactor > 0 and light enters: a refractive solid). */
-export interface NormalizedVolume {
-  thicknessFactor: number;
-  thicknessTexture?: NormalizedTextureRef;
-  attenuationColor: [number, number, number];
-  /** Infinity: no absorption. */
-  attenuationDistance: number;
-}
-
-/** KHR_materials_clearcoat (present when clearcoatFactor > 0). */
-export interface NormalizedClearcoat {
-  factor: number;
-  texture?: NormalizedTextureRef;
-  roughnessFactor: number;
-  roughnessTexture?: NormalizedTextureRef;
-  normalTexture?: NormalizedTextureRef;
-}
-
-/** KHR_materials_sheen (present when sheenColorFactor is not black). */
-export interface NormalizedSheen {
-  colorFactor: [number, number, number];
-  colorTexture?: NormalizedTextureRef;
-  roughnessFactor: number;
-  roughnessTexture?: NormalizedTextureRef;
-}
-
-/** KHR_materials_iridescence (present when iridescenceFactor > 0). */
-export interface NormalizedIridescence {
-  factor: number;
-  texture?: NormalizedTextureRef;
-  ior: number;
-  thicknessMinimum: number;
-  thicknessMaximum: number;
-  thicknessTexture?: NormalizedTextureRef;
-}
-
-/** KHR_materials_anisotropy (present when anisotropyStrength > 0). */
-export interface NormalizedAnisotropy {
-  strength: number;
-  /** Radians, counter-clockwise from the tangent. */
-  rotation: number;
-  texture?: NormalizedTextureRef;
-}
-
-/** KHR_materials_diffuse_transmission (present when diffuseTransmissionFactor > 0). */
-export interface NormalizedDiffuseTransmission {
-  factor: number;
-  texture?: NormalizedTextureRef;
-  colorFactor: [number, number, number];
-  colorTexture?: NormalizedTextureRef;
-}
+// The KHR extension blocks follow from their registry entries (materials/extensions/<name>/extension.ts).
+export type NormalizedSpecular = NormalizedExtension<typeof specular>;
+export type NormalizedTransmission = NormalizedExtension<typeof transmission>;
+/** Present when thicknessFactor > 0 and light enters: a refractive solid. attenuationDistance Infinity: no absorption. */
+export type NormalizedVolume = NormalizedExtension<typeof volume>;
+export type NormalizedClearcoat = NormalizedExtension<typeof clearcoat>;
+export type NormalizedSheen = NormalizedExtension<typeof sheen>;
+export type NormalizedIridescence = NormalizedExtension<typeof iridescence>;
+/** rotation: radians, counter-clockwise from the tangent. */
+export type NormalizedAnisotropy = NormalizedExtension<typeof anisotropy>;
+export type NormalizedDiffuseTransmission = NormalizedExtension<typeof diffuseTransmission>;
 
 /**
  * A validated glTF metallic-roughness material with every default applied. A KHR extension block
- * is present only when its factors change the material (an extension at its defaults is absent),
- * so consumers can test presence instead of comparing defaults.
+ * (one key per registry entry: specular, transmission, volume, clearcoat, sheen, iridescence,
+ * anisotropy, diffuseTransmission, dispersion) is present only when its factors change the material
+ * (an extension at its defaults is absent), so consumers can test presence instead of comparing
+ * defaults.
  */
-export interface NormalizedMaterial {
+export interface NormalizedMaterial extends NormalizedMaterialExtensions {
   name?: string;
   baseColor: [number, number, number, number];
   /** Emitted radiance, emissiveFactor * emissiveStrength. */
@@ -102,16 +57,6 @@ export interface NormalizedMaterial {
   normalTexture?: NormalizedTextureRef;
   occlusionTexture?: NormalizedTextureRef;
   emissiveTexture?: NormalizedTextureRef;
-  specular?: NormalizedSpecular;
-  transmission?: NormalizedTransmission;
-  volume?: NormalizedVolume;
-  clearcoat?: NormalizedClearcoat;
-  sheen?: NormalizedSheen;
-  iridescence?: NormalizedIridescence;
-  anisotropy?: NormalizedAnisotropy;
-  diffuseTransmission?: NormalizedDiffuseTransmission;
-  /** KHR_materials_dispersion (20 / Abbe number), present when > 0 on a refractive solid. */
-  dispersion?: number;
 }
 
 export const defaultMaterial: Readonly<NormalizedMaterial> = Object.freeze<NormalizedMaterial>({
@@ -137,31 +82,11 @@ export const coreTextureSlots = {
 export type CoreTextureSlot = keyof typeof coreTextureSlots;
 
 /** The KHR extension texture slots (input names) and whether their RGB is sRGB colour (each extension's specification). */
-export const extensionTextureSlots = {
-  specularTexture: { srgb: false },
-  specularColorTexture: { srgb: true },
-  transmissionTexture: { srgb: false },
-  thicknessTexture: { srgb: false },
-  clearcoatTexture: { srgb: false },
-  clearcoatRoughnessTexture: { srgb: false },
-  clearcoatNormalTexture: { srgb: false },
-  sheenColorTexture: { srgb: true },
-  sheenRoughnessTexture: { srgb: false },
-  iridescenceTexture: { srgb: false },
-  iridescenceThicknessTexture: { srgb: false },
-  anisotropyTexture: { srgb: false },
-  diffuseTransmissionTexture: { srgb: false },
-  diffuseTransmissionColorTexture: { srgb: true },
-} as const;
+export const extensionTextureSlots: Readonly<Record<string, { srgb: boolean }>> = Object.fromEntries(
+  anyMaterialExtensions.flatMap((e) => e.textures.map((t) => [t.key, { srgb: t.srgb }])),
+);
 
-export type ExtensionTextureSlot = keyof typeof extensionTextureSlots;
-
-const extensionFactorKeys = new Set([
-  'specularFactor', 'specularColorFactor', 'transmissionFactor', 'thicknessFactor', 'attenuationColor', 'attenuationDistance', 'clearcoatFactor',
-  'clearcoatRoughnessFactor', 'sheenColorFactor', 'sheenRoughnessFactor', 'dispersion', 'iridescenceFactor', 'iridescenceIor',
-  'iridescenceThicknessMinimum', 'iridescenceThicknessMaximum', 'anisotropyStrength', 'anisotropyRotation', 'diffuseTransmissionFactor',
-  'diffuseTransmissionColorFactor',
-]);
+const extensionFactorKeys = new Set(anyMaterialExtensions.flatMap((e) => e.factors.map((f) => f.key)));
 const coreKeys = new Set([
   'name', 'baseColorFactor', 'baseColorTexture', 'metallicFactor', 'roughnessFactor', 'metallicRoughnessTexture', 'normalTexture',
   'occlusionTexture', 'emissiveFactor', 'emissiveTexture', 'emissiveStrength', 'ior', 'doubleSided', 'alphaMode', 'alphaCutoff',
@@ -177,20 +102,10 @@ export function materialTextureRefs(m: NormalizedMaterial): { slot: string; ref:
     if (ref) out.push({ slot, ref, srgb });
   };
   for (const slot of Object.keys(coreTextureSlots) as CoreTextureSlot[]) add(slot, m[slot], coreTextureSlots[slot].srgb);
-  add('specularTexture', m.specular?.texture, false);
-  add('specularColorTexture', m.specular?.colorTexture, true);
-  add('transmissionTexture', m.transmission?.texture, false);
-  add('thicknessTexture', m.volume?.thicknessTexture, false);
-  add('clearcoatTexture', m.clearcoat?.texture, false);
-  add('clearcoatRoughnessTexture', m.clearcoat?.roughnessTexture, false);
-  add('clearcoatNormalTexture', m.clearcoat?.normalTexture, false);
-  add('sheenColorTexture', m.sheen?.colorTexture, true);
-  add('sheenRoughnessTexture', m.sheen?.roughnessTexture, false);
-  add('iridescenceTexture', m.iridescence?.texture, false);
-  add('iridescenceThicknessTexture', m.iridescence?.thicknessTexture, false);
-  add('anisotropyTexture', m.anisotropy?.texture, false);
-  add('diffuseTransmissionTexture', m.diffuseTransmission?.texture, false);
-  add('diffuseTransmissionColorTexture', m.diffuseTransmission?.colorTexture, true);
+  for (const e of anyMaterialExtensions) {
+    const block = (m as unknown as Record<string, unknown>)[e.key] as Record<string, NormalizedTextureRef | undefined> | undefined;
+    for (const t of e.textures) add(t.key, block?.[t.field], t.srgb);
+  }
   return out;
 }
 
@@ -295,95 +210,41 @@ export function normalizeMaterial(
   return out;
 }
 
-type Extensions = Pick<NormalizedMaterial, 'specular' | 'transmission' | 'volume' | 'clearcoat' | 'sheen' | 'iridescence' | 'anisotropy' | 'diffuseTransmission' | 'dispersion'>;
-
 /**
  * The KHR material extensions' factors and textures, validated against the ranges of each
- * extension's JSON schema; a block is kept only when it changes the material.
+ * extension's JSON schema (its registry entry); a block is kept only when it changes the material.
  */
-function normalizeExtensions(m: WavefrontMaterialInput, field: string, textureCount: number, code: GpuRendererErrorCode): Extensions {
-  const at = (key: string): string => `${field}.${key}`;
-  const unit = (key: keyof WavefrontMaterialInput, fallback: number): number => {
-    const v = m[key];
-    return v === undefined ? fallback : requireNumberInRange(v, at(key), { min: 0, max: 1 }, code);
-  };
-  const nonNegative = (key: keyof WavefrontMaterialInput, fallback: number): number => {
-    const v = m[key];
-    return v === undefined ? fallback : requireNumberInRange(v, at(key), { min: 0 }, code);
-  };
-  const rgb = (key: keyof WavefrontMaterialInput, fallback: readonly number[], max?: number): [number, number, number] => {
-    const c = color(m[key], at(key), 3, fallback, code) as [number, number, number];
-    if (max !== undefined) c.forEach((v, i) => { if (v > max) fail(code, `${at(key)}[${i}]`, `must be <= ${max}, got ${v}`); });
-    return c;
-  };
-  const texture = (key: ExtensionTextureSlot): NormalizedTextureRef | undefined => {
-    const ref = m[key];
-    return ref === undefined ? undefined : normalizeTextureRef(ref, at(key), textureCount, code);
-  };
-  const withTextures = <T extends object>(block: T, textures: Record<string, NormalizedTextureRef | undefined>): T => {
-    for (const [k, v] of Object.entries(textures)) if (v !== undefined) (block as Record<string, unknown>)[k] = v;
-    return block;
-  };
-  const out: Extensions = {};
+function normalizeExtensions(m: WavefrontMaterialInput, field: string, textureCount: number, code: GpuRendererErrorCode): NormalizedMaterialExtensions {
+  const input = m as Record<string, unknown>;
+  const out: Record<string, unknown> = {};
+  for (const e of anyMaterialExtensions) {
+    const block: Record<string, unknown> = {};
+    for (const f of e.factors) block[f.field] = normalizeFactor(f, input[f.key], `${field}.${f.key}`, code);
+    for (const t of e.textures) {
+      const ref = input[t.key];
+      if (ref !== undefined) block[t.field] = normalizeTextureRef(ref as WavefrontTextureRefInput, `${field}.${t.key}`, textureCount, code);
+    }
+    const value = e.normalized === 'scalar' ? block[e.factors[0]!.field] : block;
+    if (e.present(value as never, out)) out[e.key] = value;
+  }
+  return out as NormalizedMaterialExtensions;
+}
 
-  // KHR_materials_specular: specularFactor in [0, 1], specularColorFactor >= 0 (may exceed 1).
-  const specular = unit('specularFactor', 1);
-  const specularColor = rgb('specularColorFactor', [1, 1, 1]);
-  const specularTextures = { texture: texture('specularTexture'), colorTexture: texture('specularColorTexture') };
-  if (specular !== 1 || specularColor.some((c) => c !== 1) || specularTextures.texture || specularTextures.colorTexture) {
-    out.specular = withTextures<NormalizedSpecular>({ factor: specular, colorFactor: specularColor }, specularTextures);
+/** One extension factor: its default when absent, else checked against the schema range. */
+function normalizeFactor(f: FactorSpec, value: unknown, at: string, code: GpuRendererErrorCode): number | [number, number, number] {
+  const { min, max, above } = f.range;
+  const lower = min ?? above;
+  if (f.type === 'rgb') {
+    const c = color(value, at, 3, f.default as readonly number[], code) as [number, number, number];
+    c.forEach((v, i) => {
+      if (max !== undefined && v > max) fail(code, `${at}[${i}]`, `must be <= ${max}, got ${v}`);
+    });
+    return c;
   }
-  // KHR_materials_transmission and KHR_materials_diffuse_transmission: fractions in [0, 1].
-  const transmission = unit('transmissionFactor', 0);
-  const transmissionTexture = texture('transmissionTexture');
-  if (transmission > 0) out.transmission = withTextures<NormalizedTransmission>({ factor: transmission }, { texture: transmissionTexture });
-  const diffuseTransmission = unit('diffuseTransmissionFactor', 0);
-  const diffuseTransmissionColor = rgb('diffuseTransmissionColorFactor', [1, 1, 1], 1);
-  const diffuseTextures = { texture: texture('diffuseTransmissionTexture'), colorTexture: texture('diffuseTransmissionColorTexture') };
-  if (diffuseTransmission > 0) {
-    out.diffuseTransmission = withTextures<NormalizedDiffuseTransmission>({ factor: diffuseTransmission, colorFactor: diffuseTransmissionColor }, diffuseTextures);
-  }
-  // KHR_materials_volume: thicknessFactor >= 0, attenuationDistance > 0 (Infinity: none),
-  // attenuationColor in [0, 1]. Only a solid that light can enter is a volume.
-  const thickness = nonNegative('thicknessFactor', 0);
-  const thicknessTexture = texture('thicknessTexture');
-  const attenuationColor = rgb('attenuationColor', [1, 1, 1], 1);
-  let attenuationDistance = Infinity;
-  if (m.attenuationDistance !== undefined && m.attenuationDistance !== Infinity) {
-    attenuationDistance = requireNumberInRange(m.attenuationDistance, at('attenuationDistance'), { min: 0 }, code);
-    if (attenuationDistance === 0) fail(code, at('attenuationDistance'), 'must be > 0 (Infinity: no absorption)');
-  }
-  if (thickness > 0 && (out.transmission || out.diffuseTransmission)) {
-    out.volume = withTextures<NormalizedVolume>({ thicknessFactor: thickness, attenuationColor, attenuationDistance }, { thicknessTexture });
-  }
-  // KHR_materials_dispersion: >= 0; it bends light only inside a refractive solid.
-  const dispersion = nonNegative('dispersion', 0);
-  if (dispersion > 0 && out.volume) out.dispersion = dispersion;
-  // KHR_materials_clearcoat: factor and roughness in [0, 1].
-  const clearcoat = unit('clearcoatFactor', 0);
-  const clearcoatRoughness = unit('clearcoatRoughnessFactor', 0);
-  const clearcoatTextures = { texture: texture('clearcoatTexture'), roughnessTexture: texture('clearcoatRoughnessTexture'), normalTexture: texture('clearcoatNormalTexture') };
-  if (clearcoat > 0) out.clearcoat = withTextures<NormalizedClearcoat>({ factor: clearcoat, roughnessFactor: clearcoatRoughness }, clearcoatTextures);
-  // KHR_materials_sheen: colour in [0, 1], roughness in [0, 1].
-  const sheenColor = rgb('sheenColorFactor', [0, 0, 0], 1);
-  const sheenRoughness = unit('sheenRoughnessFactor', 0);
-  const sheenTextures = { colorTexture: texture('sheenColorTexture'), roughnessTexture: texture('sheenRoughnessTexture') };
-  if (sheenColor.some((c) => c > 0)) out.sheen = withTextures<NormalizedSheen>({ colorFactor: sheenColor, roughnessFactor: sheenRoughness }, sheenTextures);
-  // KHR_materials_iridescence: factor in [0, 1], film ior >= 1, thicknesses >= 0 nm (either order).
-  const iridescence = unit('iridescenceFactor', 0);
-  const iridescenceIor = m.iridescenceIor === undefined ? 1.3 : requireNumberInRange(m.iridescenceIor, at('iridescenceIor'), { min: 1 }, code);
-  const thicknessMinimum = nonNegative('iridescenceThicknessMinimum', 100);
-  const thicknessMaximum = nonNegative('iridescenceThicknessMaximum', 400);
-  const iridescenceTextures = { texture: texture('iridescenceTexture'), thicknessTexture: texture('iridescenceThicknessTexture') };
-  if (iridescence > 0) {
-    out.iridescence = withTextures<NormalizedIridescence>({ factor: iridescence, ior: iridescenceIor, thicknessMinimum, thicknessMaximum }, iridescenceTextures);
-  }
-  // KHR_materials_anisotropy: strength in [0, 1], rotation any angle.
-  const anisotropy = unit('anisotropyStrength', 0);
-  const rotation = m.anisotropyRotation === undefined ? 0 : requireFiniteNumber(m.anisotropyRotation, at('anisotropyRotation'), code);
-  const anisotropyTexture = texture('anisotropyTexture');
-  if (anisotropy > 0) out.anisotropy = withTextures<NormalizedAnisotropy>({ strength: anisotropy, rotation }, { texture: anisotropyTexture });
-  return out;
+  if (value === undefined || (f.infinity === true && value === Infinity)) return f.default as number;
+  const v = lower === undefined && max === undefined ? requireFiniteNumber(value, at, code) : requireNumberInRange(value, at, { min: lower, max }, code);
+  if (above !== undefined && v <= above) fail(code, at, `must be > ${above}${f.infinity ? ' (Infinity: none)' : ''}`);
+  return v;
 }
 
 export function isEmissive(material: NormalizedMaterial): boolean {

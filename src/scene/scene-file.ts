@@ -7,6 +7,7 @@
  */
 import { GpuRendererError } from '../errors/gpu-renderer-error.ts';
 import { describe } from '../errors/validate.ts';
+import { anyMaterialExtensions } from '../materials/extensions/index.ts';
 import { parseGltfReferences, type GltfSceneReference } from './gltf-references.ts';
 import type {
   WavefrontCameraInput,
@@ -135,19 +136,17 @@ function pick<T>(src: Json, field: string, readers: { [K in keyof T]-?: (value: 
 
 const sceneKeys = ['camera', 'environment', 'meshes', 'instances', 'materials', 'textures', 'images', 'sceneObjects', 'lights', 'gltf'] as const;
 const cameraKeys = ['type', 'position', 'target', 'up', 'fovYDegrees', 'orthographicHeight'] as const;
+// Extension keys (factors and textures) come from the material extension registry.
+const extensionFactors = anyMaterialExtensions.flatMap((e) => e.factors);
 const textureSlots = [
-  'baseColorTexture', 'metallicRoughnessTexture', 'normalTexture', 'occlusionTexture', 'emissiveTexture', 'specularTexture', 'specularColorTexture',
-  'transmissionTexture', 'thicknessTexture', 'clearcoatTexture', 'clearcoatRoughnessTexture', 'clearcoatNormalTexture', 'sheenColorTexture',
-  'sheenRoughnessTexture', 'iridescenceTexture', 'iridescenceThicknessTexture', 'anisotropyTexture', 'diffuseTransmissionTexture',
-  'diffuseTransmissionColorTexture',
-] as const;
+  'baseColorTexture', 'metallicRoughnessTexture', 'normalTexture', 'occlusionTexture', 'emissiveTexture',
+  ...anyMaterialExtensions.flatMap((e) => e.textures.map((t) => t.key)),
+];
 const scalarFactors = [
-  'metallicFactor', 'roughnessFactor', 'emissiveStrength', 'ior', 'alphaCutoff', 'specularFactor', 'transmissionFactor', 'thicknessFactor',
-  'attenuationDistance', 'clearcoatFactor', 'clearcoatRoughnessFactor', 'sheenRoughnessFactor', 'dispersion', 'iridescenceFactor', 'iridescenceIor',
-  'iridescenceThicknessMinimum', 'iridescenceThicknessMaximum', 'anisotropyStrength', 'anisotropyRotation', 'diffuseTransmissionFactor',
-] as const;
-const colorFactors = ['emissiveFactor', 'specularColorFactor', 'attenuationColor', 'sheenColorFactor', 'diffuseTransmissionColorFactor'] as const;
-const materialKeys = ['name', 'baseColorFactor', 'doubleSided', 'alphaMode', ...scalarFactors, ...colorFactors, ...textureSlots] as const;
+  'metallicFactor', 'roughnessFactor', 'emissiveStrength', 'ior', 'alphaCutoff', ...extensionFactors.filter((f) => f.type === 'number').map((f) => f.key),
+];
+const colorFactors = ['emissiveFactor', ...extensionFactors.filter((f) => f.type === 'rgb').map((f) => f.key)];
+const materialKeys = ['name', 'baseColorFactor', 'doubleSided', 'alphaMode', ...scalarFactors, ...colorFactors, ...textureSlots];
 const meshKeys = ['id', 'positions', 'indices', 'normals', 'tangents', 'uvs', 'uvs1', 'colors', 'material', 'emission'] as const;
 const sceneObjectKeys = ['type', 'center', 'radius', 'min', 'max', 'color', 'emission', 'roughness', 'metallic', 'ior', 'materialKind'] as const;
 

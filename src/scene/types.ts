@@ -8,34 +8,13 @@
  * Without `instances` every mesh is drawn once, in world space.
  */
 
-export type Vec2Input = readonly [number, number] | readonly number[];
+import type { MaterialExtensionInputs } from '../materials/extensions/index.ts';
+import type { Vec2Input, WavefrontTextureRefInput, WavefrontTextureTransformInput } from './texture-refs.ts';
+
+export type { Vec2Input, WavefrontTextureRefInput, WavefrontTextureTransformInput };
+
 export type Vec3Input = readonly [number, number, number] | readonly number[];
 export type Vec4Input = readonly [number, number, number, number] | readonly number[];
-
-/** KHR_texture_transform: uv' = T(offset) R(rotation) S(scale) uv, applied before wrapping. */
-export interface WavefrontTextureTransformInput {
-  /** Default [0, 0]. */
-  offset?: Vec2Input;
-  /** Radians, counter-clockwise in uv space; default 0. */
-  rotation?: number;
-  /** Default [1, 1]. */
-  scale?: Vec2Input;
-  /** Overrides the reference's texCoord (KHR_texture_transform texCoord). */
-  texCoord?: number;
-}
-
-/** A material's use of a texture (glTF textureInfo / normalTextureInfo / occlusionTextureInfo). */
-export interface WavefrontTextureRefInput {
-  /** Index into the scene's `textures`. */
-  index: number;
-  /** UV set: 0 (`uvs`) or 1 (`uvs1`); default 0. */
-  texCoord?: number;
-  transform?: WavefrontTextureTransformInput;
-  /** normalTexture.scale (default 1); also clearcoatNormalTexture.scale. */
-  scale?: number;
-  /** occlusionTexture.strength (default 1). */
-  strength?: number;
-}
 
 export type WavefrontWrapMode = 'repeat' | 'clamp-to-edge' | 'mirrored-repeat';
 export type WavefrontMagFilter = 'nearest' | 'linear';
@@ -80,9 +59,10 @@ export type WavefrontAlphaMode = 'OPAQUE' | 'MASK' | 'BLEND';
 
 /**
  * glTF 2.0 metallic-roughness material factors and textures, with the KHR material extensions'
- * factors flattened under their glTF names.
+ * factors and textures flattened under their glTF names (MaterialExtensionInputs: one key per
+ * factor and texture of each registry entry in materials/extensions/, e.g. sheenColorFactor).
  */
-export interface WavefrontMaterialInput {
+export interface WavefrontMaterialInput extends MaterialExtensionInputs {
   name?: string;
   /** Linear RGB(A), default [1, 1, 1, 1]. */
   baseColorFactor?: Vec3Input | Vec4Input;
@@ -110,51 +90,6 @@ export interface WavefrontMaterialInput {
   alphaMode?: WavefrontAlphaMode;
   /** MASK threshold, default 0.5. */
   alphaCutoff?: number;
-  /** KHR_materials_specular: default 1. */
-  specularFactor?: number;
-  specularTexture?: WavefrontTextureRefInput;
-  /** KHR_materials_specular: linear RGB, default [1, 1, 1]. */
-  specularColorFactor?: Vec3Input;
-  specularColorTexture?: WavefrontTextureRefInput;
-  /** KHR_materials_transmission, default 0. */
-  transmissionFactor?: number;
-  transmissionTexture?: WavefrontTextureRefInput;
-  /** KHR_materials_volume: > 0 makes the mesh a refractive solid; default 0 (thin walled). */
-  thicknessFactor?: number;
-  thicknessTexture?: WavefrontTextureRefInput;
-  /** KHR_materials_volume: linear RGB, default [1, 1, 1]. */
-  attenuationColor?: Vec3Input;
-  /** KHR_materials_volume: default Infinity (no absorption). */
-  attenuationDistance?: number;
-  /** KHR_materials_clearcoat, default 0. */
-  clearcoatFactor?: number;
-  clearcoatTexture?: WavefrontTextureRefInput;
-  clearcoatRoughnessFactor?: number;
-  clearcoatRoughnessTexture?: WavefrontTextureRefInput;
-  clearcoatNormalTexture?: WavefrontTextureRefInput;
-  /** KHR_materials_sheen: linear RGB, default [0, 0, 0]. */
-  sheenColorFactor?: Vec3Input;
-  sheenColorTexture?: WavefrontTextureRefInput;
-  sheenRoughnessFactor?: number;
-  sheenRoughnessTexture?: WavefrontTextureRefInput;
-  /** KHR_materials_dispersion, default 0. */
-  dispersion?: number;
-  /** KHR_materials_iridescence. */
-  iridescenceFactor?: number;
-  iridescenceTexture?: WavefrontTextureRefInput;
-  iridescenceIor?: number;
-  iridescenceThicknessMinimum?: number;
-  iridescenceThicknessMaximum?: number;
-  iridescenceThicknessTexture?: WavefrontTextureRefInput;
-  /** KHR_materials_anisotropy. */
-  anisotropyStrength?: number;
-  anisotropyRotation?: number;
-  anisotropyTexture?: WavefrontTextureRefInput;
-  /** KHR_materials_diffuse_transmission. */
-  diffuseTransmissionFactor?: number;
-  diffuseTransmissionTexture?: WavefrontTextureRefInput;
-  diffuseTransmissionColorFactor?: Vec3Input;
-  diffuseTransmissionColorTexture?: WavefrontTextureRefInput;
 }
 
 export interface WavefrontMeshInput {

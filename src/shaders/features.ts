@@ -4,6 +4,8 @@
  * removes that code and the scene does not pay for it; the output is identical either way (tests
  * render with features forced on and off).
  */
+import { materialExtensions, type MaterialExtension } from '../materials/extensions/index.ts';
+
 export const shaderFeatures = {
   FEATURE_ANALYTIC_SHAPES: { default: true, doc: 'spheres and boxes among the primitives' },
   FEATURE_ALPHA_TEST: { default: true, doc: 'MASK or BLEND primitives: traversal alpha-tests candidate hits' },
@@ -20,18 +22,16 @@ export const shaderFeatures = {
   FEATURE_PUNCTUAL_LIGHTS: { default: true, doc: 'point, spot or directional lights are sampled by next-event estimation' },
   FEATURE_AREA_LIGHTS: { default: true, doc: 'rectangle, disk or sphere lights are sampled, hit by rays and block rays' },
   FEATURE_LIGHT_TREE: { default: true, doc: 'bounded lights are chosen by the light hierarchy instead of the power alias table' },
-  // KHR material extensions (materials subsystem): each compiles in when a material uses it.
-  FEATURE_SPECULAR: { default: true, doc: 'KHR_materials_specular: specular weight and F0 colour' },
-  FEATURE_TRANSMISSION: { default: true, doc: 'KHR_materials_transmission: thin-walled and refractive GGX transmission' },
-  FEATURE_VOLUME: { default: true, doc: 'KHR_materials_volume: refractive solids, nested media, Beer-Lambert absorption' },
-  FEATURE_CLEARCOAT: { default: true, doc: 'KHR_materials_clearcoat' },
-  FEATURE_SHEEN: { default: true, doc: 'KHR_materials_sheen (Charlie)' },
-  FEATURE_IRIDESCENCE: { default: true, doc: 'KHR_materials_iridescence (thin-film Fresnel)' },
-  FEATURE_ANISOTROPY: { default: true, doc: 'KHR_materials_anisotropy (anisotropic GGX)' },
-  FEATURE_DIFFUSE_TRANSMISSION: { default: true, doc: 'KHR_materials_diffuse_transmission' },
-  FEATURE_DISPERSION: { default: true, doc: 'KHR_materials_dispersion: paths that meet it carry one wavelength' },
+  // KHR material extensions (materials/extensions/): each compiles in when a material uses it.
+  ...extensionFeatures(),
   FEATURE_ENERGY_COMPENSATION: { default: true, doc: 'multiple-scattering energy compensation of rough microfacet lobes' },
 } as const;
+
+type ExtensionFeatureName = MaterialExtension['feature']['name'];
+
+function extensionFeatures(): Record<ExtensionFeatureName, { default: true; doc: string }> {
+  return Object.fromEntries(materialExtensions.map((e) => [e.feature.name, { default: true, doc: e.feature.doc }])) as Record<ExtensionFeatureName, { default: true; doc: string }>;
+}
 
 export type ShaderFeatureName = keyof typeof shaderFeatures;
 export type ShaderFeatures = Record<ShaderFeatureName, boolean>;

@@ -9,23 +9,23 @@
 
 /**
  * Program groups: a group's programs take their bindings from one binding table and ship in one
- * generated module. The groups a first frame needs are bundled with the code ('eager'); the others
- * are imported on first use ('lazy'), so a bundler splits them into chunks of their own and an app
- * that never builds a BVH on the GPU, runs the OIDN denoiser or rasterizes never downloads their
- * WGSL.
+ * generated module, imported on first use, so a bundler splits each into a chunk of its own: an app
+ * that only rasterizes never downloads the path tracer's WGSL, and one that never builds a BVH on
+ * the GPU or runs the OIDN denoiser never downloads theirs. `shaderSource` marks the groups that
+ * createWavefrontPathTracingComputeShaderSource() returns (bundled with that function).
  */
 export const programGroups = {
   /** The wavefront kernels, adaptive sampling and the à-trous denoiser. */
-  pathTracer: { file: 'path-tracer', loading: 'eager' },
+  pathTracer: { file: 'path-tracer', shaderSource: true },
   /** Resolving the film for display and presenting it on a canvas. */
-  display: { file: 'display', loading: 'eager' },
+  display: { file: 'display', shaderSource: true },
   /** The GPU LBVH builder and refitter (acceleration mode 'gpu', and refits of the CPU tree). */
-  bvhBuild: { file: 'bvh-build', loading: 'lazy' },
+  bvhBuild: { file: 'bvh-build', shaderSource: false },
   /** The OIDN denoiser's network. */
-  oidn: { file: 'oidn', loading: 'lazy' },
+  oidn: { file: 'oidn', shaderSource: false },
   /** The raster renderer (its renderer loads them when it is created). */
-  raster: { file: 'raster', loading: 'lazy' },
-} as const satisfies Record<string, { readonly file: string; readonly loading: 'eager' | 'lazy' }>;
+  raster: { file: 'raster', shaderSource: false },
+} as const satisfies Record<string, { readonly file: string; readonly shaderSource: boolean }>;
 
 export type ProgramGroupName = keyof typeof programGroups;
 
@@ -85,5 +85,5 @@ export const programSpecs = {
 
 export type ProgramName = keyof typeof programSpecs;
 
-/** The programs of the groups loaded eagerly. */
-export type EagerProgramName = { [K in ProgramName]: (typeof programGroups)[(typeof programSpecs)[K]['group']]['loading'] extends 'eager' ? K : never }[ProgramName];
+/** The programs of the groups createWavefrontPathTracingComputeShaderSource() returns. */
+export type ShaderSourceProgramName = { [K in ProgramName]: (typeof programGroups)[(typeof programSpecs)[K]['group']]['shaderSource'] extends true ? K : never }[ProgramName];

@@ -1,7 +1,8 @@
 // The layers of src/, lowest first. A module may import its own unit and any unit in a lower
 // layer, never one in a higher layer: the graph stays acyclic, so each unit can be read, tested
 // and reused with only what is below it. A unit is a folder of src/ (`scene`), or a subfolder or
-// file inside one (`io/gltf`) where the folder's parts sit at different heights; a module belongs
+// file inside one (`io/gltf`) where the folder's parts sit at different heights (a `*` segment
+// matches any one folder: `materials/extensions/*/extension.ts`); a module belongs
 // to the longest unit that contains it. Units in one layer are peers (they may import each other);
 // keep such groups rare. A new folder under src/ must be placed here (the layering test fails
 // until it is). Files directly in src/ are the package's entry points and may import any layer.
@@ -15,6 +16,19 @@ export const layers: readonly (readonly string[])[] = [
   ['io'],
   // The WebGPU device and its constants (Dawn is found through the platform layer).
   ['gpu'],
+  // Struct layouts (the std430 rules) and the types a material uses to name textures: what the
+  // material-extension registry's entries are written in.
+  ['gpu-layout/struct-layout.ts', 'scene/texture-refs.ts'],
+  // The material-extension registry: one declarative entry per KHR material extension (its glTF
+  // and scene-file keys, validation, record block, flag and feature), read by the layers above
+  // that derive records, features, validation and packing from it. The physics beside each entry
+  // sits in the materials layer.
+  [
+    'materials/extensions/index.ts',
+    'materials/extensions/material-extension.ts',
+    'materials/extensions/volume/absorption.ts',
+    'materials/extensions/*/extension.ts',
+  ],
   // Byte layouts shared by TypeScript and WGSL: records, bindings, constants.
   ['gpu-layout'],
   // Generated WGSL modules and their composition (the program registry).

@@ -5,13 +5,18 @@
 // - @gltf-transform/core and /extensions: the copy reads a GLB into the same document as the
 //   package does, and only NodeIO (which needs node:fs) fails, with a message saying why.
 // The browser tests (esbuild-, webpack-, vite-consumer) check the same tangents in Chromium.
+// And its root, split into `export *` over one module per statement of src/index.ts: the same
+// names as the ESM root, and a root that is not only named re-exports fails the build.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
+import { mkdtempSync, readdirSync, rmSync, writeFileSync } from 'node:fs';
+import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { pathToFileURL } from 'node:url';
 import { NodeIO, WebIO } from '@gltf-transform/core';
 import { ALL_EXTENSIONS } from '@gltf-transform/extensions';
 import { builtPackage } from './bundle.ts';
+import { splitRootModule } from '../../scripts/browser-build/root.ts';
 import { loadGltfScene } from '../../src/io/index.ts';
 import { createNormalMappedGlb, meshStreams } from './normal-mapped-asset.ts';
 
@@ -81,3 +86,41 @@ test(
     assert.deepEqual(meshStreams((await browser.loadGltfScene(document)).meshes), meshStreams(reference.meshes));
   },
 );
+
+test("the browser build's root exports the ESM root's names, each from the same module", { timeout: 120_000 }, async () => {
+  const { browserDir, esmDir, report } = await builtPackage();
+  const browser = (await import(pathToFileURL(join(browserDir, 'index.js')).href)) as Record<string, unknown>;
+  const esm = (await import(pathToFileURL(join(esmDir, 'index.js')).href)) as Record<string, unknown>;
+  assert.deepEqual(Object.keys(browser).sort(), Object.keys(esm).sort());
+  assert.deepEqual([...report.root.names].sort(), Object.keys(esm).sort());
+  // Same code, not copies: each name is the object the module behind it exports.
+  const errors = (await import(pathToFileURL(join(browserDir, 'errors/index.js')).href)) as Record<string, unknown>;
+  assert.equal(browser.isGpuRendererError, errors.isGpuRendererError);
+  assert.ok(report.root.modules.length > 1 && report.root.modules.every((m) => m.startsWith('root/')));
+});
+
+test('splitting the root fails on anything but named re-exports', async () => {
+  const cases = {
+    'a local export': `export const x = 1;\n`,
+    'an import': `import { x } from './a/index.js';\nexport { x };\n`,
+    'a name exported twice': `export { x } from './a/index.js';\nexport { x } from './b/index.js';\n`,
+  };
+  for (const [what, source] of Object.entries(cases)) {
+    const dir = mkdtempSync(join(tmpdir(), 'gpu-renderer-root-'));
+    try {
+      writeFileSync(join(dir, 'index.js'), source);
+      await assert.rejects(splitRootModule(dir), /index\.js: /, what);
+    } finally {
+      rmSync(dir, { recursive: true, force: true });
+    }
+  }
+  const dir = mkdtempSync(join(tmpdir(), 'gpu-renderer-root-'));
+  try {
+    writeFileSync(join(dir, 'index.js'), `// A.\nexport { x, y } from './a/index.js';\n// B.\nexport { z } from './a/index.js';\n`);
+    const report = await splitRootModule(dir);
+    assert.deepEqual(report, { modules: ['root/a.js', 'root/a-2.js'], names: ['x', 'y', 'z'] });
+    assert.deepEqual(readdirSync(join(dir, 'root')).sort(), ['a-2.js', 'a.js']);
+  } finally {
+    rmSync(dir, { recursive: true, force: true });
+  }
+});

@@ -6,6 +6,7 @@ export { rng } from '../helpers/random.ts';
 import { createShaderChecked, readBuffer, testDevice, uploadBuffer } from '../helpers/gpu.ts';
 import { Vec4Heap } from '../../src/gpu-layout/vec4-heap.ts';
 import { packMaterialTables, type MaterialPlan } from '../../src/pathtracer/scene/pack-materials.ts';
+import { anyMaterialExtensions } from '../../src/materials/extensions/index.ts';
 import { linkTestProgram } from '../helpers/wgsl.ts';
 import { BufferUsage } from '../../src/gpu/webgpu-constants.ts';
 import type { GltfBsdfMaterial, Vec3 } from '../../src/materials/index.ts';
@@ -23,11 +24,8 @@ export interface LobeUnderTest<P> {
   constants?: Record<string, number>;
 }
 
-/** The KHR material extensions' shader feature flags. */
-export const materialFeatureNames = [
-  'FEATURE_SPECULAR', 'FEATURE_TRANSMISSION', 'FEATURE_VOLUME', 'FEATURE_CLEARCOAT', 'FEATURE_SHEEN', 'FEATURE_IRIDESCENCE', 'FEATURE_ANISOTROPY',
-  'FEATURE_DIFFUSE_TRANSMISSION', 'FEATURE_DISPERSION', 'FEATURE_ENERGY_COMPENSATION',
-] as const;
+/** The KHR material extensions' shader feature flags (one per registry entry) and energy compensation. */
+export const materialFeatureNames: readonly string[] = [...anyMaterialExtensions.map((e) => e.feature.name), 'FEATURE_ENERGY_COMPENSATION'];
 
 /** Override constants with exactly the named material features on (smaller kernels compile faster). */
 export function materialFeatureConstants(on: readonly string[]): Record<string, number> {
@@ -103,7 +101,7 @@ export function materialTablesBuffer(device: GPUDevice): GPUBuffer {
     mediumIds: new Map(),
     media: [],
     tables: { ggx: true, dielectric: true, dielectricTransmission: true, clearcoat: true, sheen: true, media: false, spectral: true },
-    uses: { specular: true, transmission: true, volume: true, clearcoat: true, sheen: true, iridescence: true, anisotropy: true, diffuseTransmission: true, dispersion: true, energyCompensation: true },
+    uses: Object.fromEntries([...anyMaterialExtensions.map((e) => e.key), 'energyCompensation'].map((k) => [k, true])) as MaterialPlan['uses'],
   };
   packMaterialTables(heap, plan);
   tablesBuffer = uploadBuffer(device, heap.finish());

@@ -14,7 +14,7 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { createWavefrontPathTracingComputeRenderer } from '../../src/pathtracer/index.ts';
-import { spectralResponse } from '../../src/materials/spectral/spectral-response.ts';
+import { spectralResponse } from '../../src/materials/extensions/dispersion/spectral-response.ts';
 import { SPECTRAL_MAX_NM, SPECTRAL_MIN_NM } from '../../src/gpu-layout/constants.ts';
 import type { WavefrontMeshInput } from '../../src/scene/types.ts';
 import { testDevice } from '../helpers/gpu.ts';

@@ -1,8 +1,11 @@
 // The BSDF lobes under test: each WESL lobe module with its packed parameters, parameter sets that
 // span its behaviour, and an independent double-precision CPU reference of f and pdf. Adding a lobe
-// here gives it every generic test of lobe-properties.test.ts.
+// here gives it every generic test of lobe-properties.test.ts. The lobes of KHR extensions keep
+// their entries beside their modules (src/materials/extensions/<name>/<name>.harness.ts, found by
+// name).
 import { ggxD, gltfBsdfEval, gltfBsdfPdf, smithG1, smithHeightCorrelatedV, type GltfBsdfMaterial, type Vec3 } from '../../src/materials/gltf-bsdf-reference.ts';
-import { ggxDielectric, ggxReflection, ggxThinDielectric, lambertTransmission, sheenCharlie } from '../../src/materials/reference/lobes.ts';
+import { readdirSync } from 'node:fs';
+import { ggxReflection } from '../../src/materials/reference/lobes.ts';
 import type { Alphas } from '../../src/materials/reference/microfacet.ts';
 import { gltfExtensionLobe, gltfLobe, type LobeUnderTest } from './bsdf-harness.ts';
 
@@ -32,40 +35,10 @@ const lambertLobe: LobeUnderTest<{ albedo: Vec3 }> = {
   pack: (p) => [...p.albedo],
 };
 
-const lambertTransmissionLobe: LobeUnderTest<{ color: Vec3 }> = {
-  name: 'Lambert transmission',
-  module: 'package::materials::lobes::lambert_transmission',
-  pack: (p) => [...p.color],
-};
-
 const ggxReflectionLobe: LobeUnderTest<{ alpha: number; alphaY?: number }> = {
   name: 'GGX reflection',
   module: 'package::materials::lobes::ggx_reflection',
   pack: (p) => [p.alpha, p.alphaY ?? 0],
-};
-
-interface DielectricParams {
-  alpha: number;
-  alphaY?: number;
-  eta: number;
-}
-
-const ggxDielectricLobe: LobeUnderTest<DielectricParams> = {
-  name: 'GGX dielectric (refraction)',
-  module: 'package::materials::lobes::ggx_dielectric',
-  pack: (p) => [p.alpha, p.alphaY ?? 0, p.eta],
-};
-
-const ggxThinDielectricLobe: LobeUnderTest<DielectricParams> = {
-  name: 'GGX thin dielectric',
-  module: 'package::materials::lobes::ggx_thin_dielectric',
-  pack: (p) => [p.alpha, p.alphaY ?? 0, p.eta],
-};
-
-const sheenLobe: LobeUnderTest<{ roughness: number }> = {
-  name: 'Charlie sheen',
-  module: 'package::materials::lobes::sheen_charlie',
-  pack: (p) => [p.roughness],
 };
 
 function upper(wo: Vec3, wi: Vec3): boolean {
@@ -96,20 +69,6 @@ export const lobeCases: LobeCase<never>[] = [
     energyConserving: true,
   } as LobeCase<{ albedo: Vec3 }>,
   {
-    lobe: lambertTransmissionLobe,
-    params: [{ name: 'tinted', value: { color: [0.9, 0.5, 0.2] } }],
-    reference: {
-      f: (p, wo, wi) => {
-        const v = lambertTransmission(wo, wi).f;
-        return [p.color[0] * v, p.color[1] * v, p.color[2] * v];
-      },
-      pdf: (_p, wo, wi) => lambertTransmission(wo, wi).pdf,
-    },
-    reciprocal: true,
-    transmission: {},
-    energyConserving: true,
-  } as LobeCase<{ color: Vec3 }>,
-  {
     lobe: ggxReflectionLobe,
     params: [
       { name: 'alpha 0.05', value: { alpha: 0.05 } },
@@ -136,54 +95,7 @@ export const lobeCases: LobeCase<never>[] = [
     reciprocal: true,
     energyConserving: true,
   } as LobeCase<{ alpha: number; alphaY?: number }>,
-  {
-    lobe: ggxDielectricLobe,
-    params: [
-      { name: 'glass alpha 0.3 entering', value: { alpha: 0.3, eta: 1.5 } },
-      { name: 'glass alpha 0.5 leaving (total internal reflection)', value: { alpha: 0.5, eta: 1 / 1.5 } },
-      { name: 'anisotropic 0.4 x 0.15, eta 1.33', value: { alpha: 0.4, alphaY: 0.15, eta: 1.33 } },
-    ],
-    reference: {
-      f: (p, wo, wi) => grey(ggxDielectric(alphas(p), p.eta, wo, wi).f),
-      pdf: (p, wo, wi) => ggxDielectric(alphas(p), p.eta, wo, wi).pdf,
-    },
-    reciprocal: true,
-    transmission: { swap: (p) => ({ ...p, eta: 1 / p.eta }), factor: (p) => p.eta * p.eta },
-    // Radiance crossing into a less dense medium is scaled up by 1 / eta^2: the albedo of the
-    // radiance BTDF exceeds 1 there though energy is conserved (pbrt-v4 section 9.5.2).
-    energyConserving: false,
-    // The Fresnel term's slope is unbounded at the critical angle: f32 inputs there differ more.
-    tolerance: 3e-3,
-  } as LobeCase<DielectricParams>,
-  {
-    lobe: ggxThinDielectricLobe,
-    params: [
-      { name: 'thin alpha 0.2, eta 1.5', value: { alpha: 0.2, eta: 1.5 } },
-      { name: 'thin anisotropic 0.5 x 0.2, eta 2', value: { alpha: 0.5, alphaY: 0.2, eta: 2 } },
-    ],
-    reference: {
-      f: (p, wo, wi) => grey(ggxThinDielectric(alphas(p), p.eta, wo, wi).f),
-      pdf: (p, wo, wi) => ggxThinDielectric(alphas(p), p.eta, wo, wi).pdf,
-    },
-    reciprocal: true,
-    transmission: {},
-    energyConserving: true,
-  } as LobeCase<DielectricParams>,
-  {
-    lobe: sheenLobe,
-    params: [
-      { name: 'sheen roughness 0.3', value: { roughness: 0.3 } },
-      { name: 'sheen roughness 0.8', value: { roughness: 0.8 } },
-    ],
-    reference: {
-      f: (p, wo, wi) => grey(sheenCharlie(p.roughness, wo, wi).f),
-      pdf: (p, wo, wi) => sheenCharlie(p.roughness, wo, wi).pdf,
-    },
-    reciprocal: true,
-    // The fitted visibility exceeds 1 at grazing views of low roughness; the composed BSDF divides
-    // it out there (gltf-bsdf.wesl), the lobe itself is the specification's.
-    energyConserving: false,
-  } as LobeCase<{ roughness: number }>,
+  ...(await extensionLobeCases()),
   {
     lobe: gltfLobe,
     params: [
@@ -199,6 +111,23 @@ export const lobeCases: LobeCase<never>[] = [
   } as LobeCase<GltfBsdfMaterial>,
   ...extensionCases(),
 ] as LobeCase<never>[];
+
+/**
+ * The lobe cases kept beside the KHR extensions' lobe modules: every export of each
+ * src/materials/extensions/<name>/*.harness.ts (found by name, so a new extension's entry needs no
+ * line here).
+ */
+async function extensionLobeCases(): Promise<LobeCase<never>[]> {
+  const root = new URL('../../src/materials/extensions/', import.meta.url);
+  const cases: LobeCase<never>[] = [];
+  for (const dir of readdirSync(root, { withFileTypes: true }).filter((d) => d.isDirectory()).map((d) => d.name).sort()) {
+    for (const file of readdirSync(new URL(`${dir}/`, root)).filter((f) => f.endsWith('.harness.ts')).sort()) {
+      const entries = (await import(new URL(`${dir}/${file}`, root).href)) as Record<string, LobeCase<never>>;
+      cases.push(...Object.values(entries));
+    }
+  }
+  return cases;
+}
 
 /** The composed glTF BSDF with KHR extensions, one compiled kernel per feature set. */
 function extensionCases(): LobeCase<GltfBsdfMaterial>[] {

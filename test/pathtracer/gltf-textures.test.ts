@@ -24,7 +24,7 @@ import { encode as encodePng } from 'fast-png';
 import { Vec4Heap } from '../../src/gpu-layout/vec4-heap.ts';
 import { buildTextureAtlas } from '../../src/materials/textures/texture-atlas.ts';
 import { readTextureInfo, sampleTextureInfo, textureLod, type Rgba } from '../../src/materials/textures/reference-sampler.ts';
-import { applyTextureTransform, textureTransformMatrix } from '../../src/materials/textures/texture-transform.ts';
+import { applyTextureTransform, textureTransformMatrix } from '../../src/scene/texture-transform.ts';
 import type { WavefrontMagFilter, WavefrontWrapMode } from '../../src/scene/types.ts';
 import { srgbToLinear } from '../../src/film/tone-mapping.ts';
 import { orthographicCameraNode, quad, renderScene, roundTrip } from './gltf-scenes.ts';

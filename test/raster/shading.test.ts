@@ -8,7 +8,7 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { schlickWeight } from '../../src/materials/reference/fresnel.ts';
 import { ggxDAniso, ggxG2 } from '../../src/materials/reference/microfacet.ts';
-import { charlieD, sheenAlpha } from '../../src/materials/reference/sheen.ts';
+import { charlieD, sheenAlpha } from '../../src/materials/extensions/sheen/reference.ts';
 import { linearToSrgb, srgbToLinear } from '../../src/film/tone-mapping.ts';
 import type { WavefrontMaterialInput } from '../../src/scene/types.ts';
 import { createRasterRenderer } from '../../src/raster/index.ts';

@@ -33,9 +33,9 @@ test('the shipped WGSL of every program compiles on WebGPU without errors', asyn
   }
 });
 
-test('the public shader source is exactly the programs of the eagerly loaded groups', async () => {
+test('the public shader source is exactly the programs of the groups marked shaderSource', async () => {
   const sources: Record<string, string> = createWavefrontPathTracingComputeShaderSource();
-  const eager = (Object.keys(programSpecs) as ProgramName[]).filter((name) => programGroups[programSpecs[name].group].loading === 'eager');
+  const eager = (Object.keys(programSpecs) as ProgramName[]).filter((name) => programGroups[programSpecs[name].group].shaderSource);
   assert.deepEqual(Object.keys(sources).sort(), eager.sort());
   for (const name of eager) assert.equal(sources[name], await programWgsl(name), name);
   assert.ok(eager.includes('shade') && eager.includes('present'));

@@ -5,6 +5,8 @@
  * and one merely *using* it gets a warning that it is ignored.
  */
 
+import { anyMaterialExtensions } from '../../materials/extensions/index.ts';
+
 /** Extensions whose content the loader maps (or that carry no rendering content at all). */
 export const SUPPORTED_EXTENSIONS: ReadonlySet<string> = new Set([
   'KHR_draco_mesh_compression',
@@ -20,15 +22,8 @@ export const SUPPORTED_EXTENSIONS: ReadonlySet<string> = new Set([
   'EXT_texture_avif',
   'KHR_materials_emissive_strength',
   'KHR_materials_ior',
-  'KHR_materials_specular',
-  'KHR_materials_transmission',
-  'KHR_materials_volume',
-  'KHR_materials_clearcoat',
-  'KHR_materials_sheen',
-  'KHR_materials_dispersion',
-  'KHR_materials_anisotropy',
-  'KHR_materials_iridescence',
-  'KHR_materials_diffuse_transmission',
+  // The KHR BSDF extensions of the material registry (materials/extensions/).
+  ...anyMaterialExtensions.map((e) => e.name),
   'KHR_materials_variants',
   'KHR_materials_pbrSpecularGlossiness',
   'KHR_materials_unlit',

@@ -1,25 +1,12 @@
 /**
  * glTF materials -> WavefrontMaterialInput: the core metallic-roughness factors and textures
  * (glTF 2.0 section 3.9) and the KHR_materials_* extensions' factors and textures under their glTF
- * names. Extension factors are written only for materials that carry the extension, so a missing
+ * names (each extension's registry entry, materials/extensions/, lists them). Extension factors are written only for materials that carry the extension, so a missing
  * one keeps the renderer's (the extension's) default.
  */
-import type { Material, Texture, TextureInfo } from '@gltf-transform/core';
-import type {
-  Anisotropy,
-  Clearcoat,
-  DiffuseTransmission,
-  Dispersion,
-  EmissiveStrength,
-  IOR,
-  Iridescence,
-  PBRSpecularGlossiness,
-  Sheen,
-  Specular,
-  Transmission,
-  Unlit,
-  Volume,
-} from '@gltf-transform/extensions';
+import type { ExtensionProperty, Material, Texture, TextureInfo } from '@gltf-transform/core';
+import type { EmissiveStrength, IOR, PBRSpecularGlossiness, Unlit } from '@gltf-transform/extensions';
+import { anyMaterialExtensions, type MaterialExtensionSpec } from '../../materials/extensions/index.ts';
 import type { WavefrontImageInput, WavefrontMaterialInput, WavefrontTextureRefInput } from '../../scene/types.ts';
 import type { TextureTable } from './textures.ts';
 
@@ -54,73 +41,39 @@ export async function mapMaterial(material: Material, at: string, table: Texture
   const ior = material.getExtension<IOR>('KHR_materials_ior');
   if (ior) out.ior = ior.getIOR();
 
-  const specular = material.getExtension<Specular>('KHR_materials_specular');
-  if (specular) {
-    const e = ext('KHR_materials_specular');
-    out.specularFactor = specular.getSpecularFactor();
-    out.specularColorFactor = [...specular.getSpecularColorFactor()];
-    await slot('specularTexture', specular.getSpecularTexture(), specular.getSpecularTextureInfo(), `${e}/specularTexture`);
-    await slot('specularColorTexture', specular.getSpecularColorTexture(), specular.getSpecularColorTextureInfo(), `${e}/specularColorTexture`);
-  }
-  const transmission = material.getExtension<Transmission>('KHR_materials_transmission');
-  if (transmission) {
-    out.transmissionFactor = transmission.getTransmissionFactor();
-    await slot('transmissionTexture', transmission.getTransmissionTexture(), transmission.getTransmissionTextureInfo(), `${ext('KHR_materials_transmission')}/transmissionTexture`);
-  }
-  const volume = material.getExtension<Volume>('KHR_materials_volume');
-  if (volume) {
-    out.thicknessFactor = volume.getThicknessFactor();
-    out.attenuationColor = [...volume.getAttenuationColor()];
-    out.attenuationDistance = volume.getAttenuationDistance();
-    await slot('thicknessTexture', volume.getThicknessTexture(), volume.getThicknessTextureInfo(), `${ext('KHR_materials_volume')}/thicknessTexture`);
-  }
-  const clearcoat = material.getExtension<Clearcoat>('KHR_materials_clearcoat');
-  if (clearcoat) {
-    const e = ext('KHR_materials_clearcoat');
-    out.clearcoatFactor = clearcoat.getClearcoatFactor();
-    out.clearcoatRoughnessFactor = clearcoat.getClearcoatRoughnessFactor();
-    await slot('clearcoatTexture', clearcoat.getClearcoatTexture(), clearcoat.getClearcoatTextureInfo(), `${e}/clearcoatTexture`);
-    await slot('clearcoatRoughnessTexture', clearcoat.getClearcoatRoughnessTexture(), clearcoat.getClearcoatRoughnessTextureInfo(), `${e}/clearcoatRoughnessTexture`);
-    await slot('clearcoatNormalTexture', clearcoat.getClearcoatNormalTexture(), clearcoat.getClearcoatNormalTextureInfo(), `${e}/clearcoatNormalTexture`, { scale: clearcoat.getClearcoatNormalScale() });
-  }
-  const sheen = material.getExtension<Sheen>('KHR_materials_sheen');
-  if (sheen) {
-    const e = ext('KHR_materials_sheen');
-    out.sheenColorFactor = [...sheen.getSheenColorFactor()];
-    out.sheenRoughnessFactor = sheen.getSheenRoughnessFactor();
-    await slot('sheenColorTexture', sheen.getSheenColorTexture(), sheen.getSheenColorTextureInfo(), `${e}/sheenColorTexture`);
-    await slot('sheenRoughnessTexture', sheen.getSheenRoughnessTexture(), sheen.getSheenRoughnessTextureInfo(), `${e}/sheenRoughnessTexture`);
-  }
-  const dispersion = material.getExtension<Dispersion>('KHR_materials_dispersion');
-  if (dispersion) out.dispersion = dispersion.getDispersion();
-  const iridescence = material.getExtension<Iridescence>('KHR_materials_iridescence');
-  if (iridescence) {
-    const e = ext('KHR_materials_iridescence');
-    out.iridescenceFactor = iridescence.getIridescenceFactor();
-    out.iridescenceIor = iridescence.getIridescenceIOR();
-    out.iridescenceThicknessMinimum = iridescence.getIridescenceThicknessMinimum();
-    out.iridescenceThicknessMaximum = iridescence.getIridescenceThicknessMaximum();
-    await slot('iridescenceTexture', iridescence.getIridescenceTexture(), iridescence.getIridescenceTextureInfo(), `${e}/iridescenceTexture`);
-    await slot('iridescenceThicknessTexture', iridescence.getIridescenceThicknessTexture(), iridescence.getIridescenceThicknessTextureInfo(), `${e}/iridescenceThicknessTexture`);
-  }
-  const anisotropy = material.getExtension<Anisotropy>('KHR_materials_anisotropy');
-  if (anisotropy) {
-    out.anisotropyStrength = anisotropy.getAnisotropyStrength();
-    out.anisotropyRotation = anisotropy.getAnisotropyRotation();
-    await slot('anisotropyTexture', anisotropy.getAnisotropyTexture(), anisotropy.getAnisotropyTextureInfo(), `${ext('KHR_materials_anisotropy')}/anisotropyTexture`);
+  for (const e of anyMaterialExtensions) {
+    const x = material.getExtension<ExtensionProperty>(e.name);
+    if (x) await mapExtension(e, x as unknown as Getters, ext(e.name), out, slot);
   }
   const specGloss = material.getExtension<PBRSpecularGlossiness>('KHR_materials_pbrSpecularGlossiness');
   if (specGloss) await applySpecularGlossiness(out, specGloss, ext('KHR_materials_pbrSpecularGlossiness'), table);
-  const diffuse = material.getExtension<DiffuseTransmission>('KHR_materials_diffuse_transmission');
-  if (diffuse) {
-    const e = ext('KHR_materials_diffuse_transmission');
-    out.diffuseTransmissionFactor = diffuse.getDiffuseTransmissionFactor();
-    out.diffuseTransmissionColorFactor = [...diffuse.getDiffuseTransmissionColorFactor()];
-    await slot('diffuseTransmissionTexture', diffuse.getDiffuseTransmissionTexture(), diffuse.getDiffuseTransmissionTextureInfo(), `${e}/diffuseTransmissionTexture`);
-    await slot('diffuseTransmissionColorTexture', diffuse.getDiffuseTransmissionColorTexture(), diffuse.getDiffuseTransmissionColorTextureInfo(), `${e}/diffuseTransmissionColorTexture`);
-  }
   if (material.getExtension<Unlit>('KHR_materials_unlit')) makeUnlit(out);
   return out;
+}
+
+/** @gltf-transform's extension properties, read through the getters their registry entries name. */
+type Getters = Record<string, () => unknown>;
+type SlotWriter = (name: Slot, texture: Texture | null, info: TextureInfo | null, slotAt: string, extra?: Partial<WavefrontTextureRefInput>) => Promise<void>;
+
+function capitalized(key: string): string {
+  return key[0]!.toUpperCase() + key.slice(1);
+}
+
+/**
+ * One KHR material extension's factors and textures under their glTF names (the registry entry
+ * lists them; @gltf-transform reads each with `get<Name>()` and `get<Name>Info()`).
+ */
+async function mapExtension(e: MaterialExtensionSpec<never>, x: Getters, at: string, out: WavefrontMaterialInput, slot: SlotWriter): Promise<void> {
+  const o = out as Record<string, unknown>;
+  for (const f of e.factors) {
+    const value = x[f.getter ?? `get${capitalized(f.key)}`]!.call(x);
+    o[f.key] = Array.isArray(value) ? [...(value as number[])] : value;
+  }
+  for (const t of e.textures) {
+    const name = capitalized(t.key);
+    const extra = t.scaleGetter === undefined ? undefined : { scale: x[t.scaleGetter]!.call(x) as number };
+    await slot(t.key as Slot, x[`get${name}`]!.call(x) as Texture | null, x[`get${name}Info`]!.call(x) as TextureInfo | null, `${at}/${t.key}`, extra);
+  }
 }
 
 /**

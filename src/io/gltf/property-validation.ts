@@ -6,6 +6,7 @@
  * TypeError deep inside it), and the renderer would refuse out-of-range values only later, under
  * its own field names: here each is an INVALID_GLTF error at its JSON pointer, at load.
  */
+import { anyMaterialExtensions } from '../../materials/extensions/index.ts';
 import { maxRadiance } from '../../scene/limits.ts';
 import { failGltf, pointer } from './errors.ts';
 import { isObject } from './json-validation.ts';
@@ -129,63 +130,15 @@ function validateMaterial(material: Json, at: string): void {
   if (x) optionalNumber(x, 'emissiveStrength', xat, { min: 0, max: maxRadiance });
   [x, xat] = e('KHR_materials_ior');
   if (x && x.ior !== undefined && x.ior !== 0) number(x.ior, `${xat}/ior`, { min: 1 });
-  [x, xat] = e('KHR_materials_specular');
-  if (x) {
-    optionalNumber(x, 'specularFactor', xat, UNIT);
-    vector(x, 'specularColorFactor', xat, 3, NON_NEGATIVE);
-    textureInfo(x, 'specularTexture', xat);
-    textureInfo(x, 'specularColorTexture', xat);
-  }
-  [x, xat] = e('KHR_materials_transmission');
-  if (x) {
-    optionalNumber(x, 'transmissionFactor', xat, UNIT);
-    textureInfo(x, 'transmissionTexture', xat);
-  }
-  [x, xat] = e('KHR_materials_volume');
-  if (x) {
-    optionalNumber(x, 'thicknessFactor', xat, NON_NEGATIVE);
-    textureInfo(x, 'thicknessTexture', xat);
-    optionalNumber(x, 'attenuationDistance', xat, { above: 0 });
-    vector(x, 'attenuationColor', xat, 3, UNIT);
-  }
-  [x, xat] = e('KHR_materials_clearcoat');
-  if (x) {
-    optionalNumber(x, 'clearcoatFactor', xat, UNIT);
-    optionalNumber(x, 'clearcoatRoughnessFactor', xat, UNIT);
-    textureInfo(x, 'clearcoatTexture', xat);
-    textureInfo(x, 'clearcoatRoughnessTexture', xat);
-    textureInfo(x, 'clearcoatNormalTexture', xat, { key: 'scale', range: {} });
-  }
-  [x, xat] = e('KHR_materials_sheen');
-  if (x) {
-    vector(x, 'sheenColorFactor', xat, 3, UNIT);
-    optionalNumber(x, 'sheenRoughnessFactor', xat, UNIT);
-    textureInfo(x, 'sheenColorTexture', xat);
-    textureInfo(x, 'sheenRoughnessTexture', xat);
-  }
-  [x, xat] = e('KHR_materials_dispersion');
-  if (x) optionalNumber(x, 'dispersion', xat, NON_NEGATIVE);
-  [x, xat] = e('KHR_materials_iridescence');
-  if (x) {
-    optionalNumber(x, 'iridescenceFactor', xat, UNIT);
-    optionalNumber(x, 'iridescenceIor', xat, { min: 1 });
-    optionalNumber(x, 'iridescenceThicknessMinimum', xat, NON_NEGATIVE);
-    optionalNumber(x, 'iridescenceThicknessMaximum', xat, NON_NEGATIVE);
-    textureInfo(x, 'iridescenceTexture', xat);
-    textureInfo(x, 'iridescenceThicknessTexture', xat);
-  }
-  [x, xat] = e('KHR_materials_anisotropy');
-  if (x) {
-    optionalNumber(x, 'anisotropyStrength', xat, UNIT);
-    optionalNumber(x, 'anisotropyRotation', xat);
-    textureInfo(x, 'anisotropyTexture', xat);
-  }
-  [x, xat] = e('KHR_materials_diffuse_transmission');
-  if (x) {
-    optionalNumber(x, 'diffuseTransmissionFactor', xat, UNIT);
-    vector(x, 'diffuseTransmissionColorFactor', xat, 3, UNIT);
-    textureInfo(x, 'diffuseTransmissionTexture', xat);
-    textureInfo(x, 'diffuseTransmissionColorTexture', xat);
+  // The KHR BSDF extensions: ranges and texture slots from their registry entries.
+  for (const spec of anyMaterialExtensions) {
+    [x, xat] = e(spec.name);
+    if (!x) continue;
+    for (const f of spec.factors) {
+      if (f.type === 'rgb') vector(x, f.key, xat, 3, f.range);
+      else optionalNumber(x, f.key, xat, f.range);
+    }
+    for (const t of spec.textures) textureInfo(x, t.key, xat, t.scaleGetter === undefined ? undefined : { key: 'scale', range: {} });
   }
   [x, xat] = e('KHR_materials_pbrSpecularGlossiness');
   if (x) {

@@ -6,7 +6,7 @@ export { packAtlas, shelfPack, fitTextureToLimit, type AtlasLimits, type AtlasPa
 export { fullMipCount, mipLevelSize, mipLevelOrigin, mipBlockSize, mipChainLayout, type MipChainLayout, type TexelRect } from './atlas-layout.ts';
 export { areaResample, generateMipChain, downscaleImage, type Rgba8Image, type TexelEncoding } from './mip-chain.ts';
 export { resolveSampler, samplerBits, samplerUsesMipmaps, defaultSampler, type ResolvedSampler } from './sampler-state.ts';
-export { textureTransformMatrix, identityTextureTransform, applyTextureTransform, type TextureTransformRows, type Vec3Row } from './texture-transform.ts';
+export { textureTransformMatrix, identityTextureTransform, applyTextureTransform, type TextureTransformRows, type Vec3Row } from '../../scene/texture-transform.ts';
 export {
   sampleTexture,
   sampleTextureInfo,

@@ -23,7 +23,7 @@ import {
 } from '../../gpu-layout/constants.ts';
 import { textureBindingLayout, textureInfoLayout } from '../../gpu-layout/records.ts';
 import { readStruct } from '../../gpu-layout/struct-layout.ts';
-import type { Vec3Row } from './texture-transform.ts';
+import type { Vec3Row } from '../../scene/texture-transform.ts';
 
 export type Rgba = [number, number, number, number];
 

@@ -14,7 +14,7 @@ import { alphaPrimitiveLayout } from '../../gpu-layout/records.ts';
 import { allocateStructArray, writeStruct } from '../../gpu-layout/struct-layout.ts';
 import type { NormalizedInstance } from '../../scene/instance.ts';
 import type { NormalizedScene } from '../../scene/normalize-scene.ts';
-import { applyTextureTransform } from '../../materials/textures/texture-transform.ts';
+import { applyTextureTransform } from '../../scene/texture-transform.ts';
 import type { TextureInfoOffsets } from './pack-materials.ts';
 
 /**

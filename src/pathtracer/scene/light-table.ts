@@ -7,7 +7,7 @@ import { luminance } from '../../lighting/emissive-lights.ts';
 import { maxEmittedPower } from '../../scene/limits.ts';
 import { isEmissive } from '../../scene/material.ts';
 import type { NormalizedScene } from '../../scene/normalize-scene.ts';
-import { applyTextureTransform } from '../../materials/textures/texture-transform.ts';
+import { applyTextureTransform } from '../../scene/texture-transform.ts';
 import { instanceMaterial, transformPoint } from './flatten-primitives.ts';
 import type { TextureInfoOffsets } from './pack-materials.ts';
 

@@ -1,22 +1,11 @@
+import { anyMaterialExtensions, type MaterialExtension } from '../../materials/extensions/index.ts';
 import type { ShaderFeatures } from '../../shaders/features.ts';
 import type { MaterialFeatureUses } from './pack-materials.ts';
 
-type MaterialFeatureName =
-  | 'FEATURE_SPECULAR' | 'FEATURE_TRANSMISSION' | 'FEATURE_VOLUME' | 'FEATURE_CLEARCOAT' | 'FEATURE_SHEEN' | 'FEATURE_IRIDESCENCE'
-  | 'FEATURE_ANISOTROPY' | 'FEATURE_DIFFUSE_TRANSMISSION' | 'FEATURE_DISPERSION' | 'FEATURE_ENERGY_COMPENSATION';
+type MaterialFeatureName = MaterialExtension['feature']['name'] | 'FEATURE_ENERGY_COMPENSATION';
 
 /** The shader feature flags of the KHR material extensions a scene's materials use. */
 export function materialFeatures(uses: MaterialFeatureUses): Pick<ShaderFeatures, MaterialFeatureName> {
-  return {
-    FEATURE_SPECULAR: uses.specular,
-    FEATURE_TRANSMISSION: uses.transmission,
-    FEATURE_VOLUME: uses.volume,
-    FEATURE_CLEARCOAT: uses.clearcoat,
-    FEATURE_SHEEN: uses.sheen,
-    FEATURE_IRIDESCENCE: uses.iridescence,
-    FEATURE_ANISOTROPY: uses.anisotropy,
-    FEATURE_DIFFUSE_TRANSMISSION: uses.diffuseTransmission,
-    FEATURE_DISPERSION: uses.dispersion,
-    FEATURE_ENERGY_COMPENSATION: uses.energyCompensation,
-  };
+  const features = Object.fromEntries(anyMaterialExtensions.map((e) => [e.feature.name, uses[e.key as MaterialExtension['key']]]));
+  return { ...features, FEATURE_ENERGY_COMPENSATION: uses.energyCompensation } as Pick<ShaderFeatures, MaterialFeatureName>;
 }

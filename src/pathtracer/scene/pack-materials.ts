@@ -2,18 +2,9 @@ import { GpuRendererError } from '../../errors/gpu-renderer-error.ts';
 import {
   INDEX_NONE,
   MATERIAL_ALPHA_MODE_SHIFT,
-  MATERIAL_FLAG_ANISOTROPY,
-  MATERIAL_FLAG_CLEARCOAT,
-  MATERIAL_FLAG_DIFFUSE_TRANSMISSION,
-  MATERIAL_FLAG_DISPERSION,
   MATERIAL_FLAG_DOUBLE_SIDED,
   MATERIAL_FLAG_ENERGY_COMPENSATION,
   MATERIAL_FLAG_IOR_INFINITE,
-  MATERIAL_FLAG_IRIDESCENCE,
-  MATERIAL_FLAG_SHEEN,
-  MATERIAL_FLAG_SPECULAR,
-  MATERIAL_FLAG_TRANSMISSION,
-  MATERIAL_FLAG_VOLUME,
   MATERIAL_TABLES_OFFSET,
   MAX_MEDIA,
   ALPHA_MODE_BLEND,
@@ -21,25 +12,13 @@ import {
   ALPHA_MODE_OPAQUE,
   TEXTURE_BINDING_FLAG_SRGB,
 } from '../../gpu-layout/constants.ts';
-import {
-  anisotropyBlockLayout,
-  clearcoatBlockLayout,
-  diffuseTransmissionBlockLayout,
-  iridescenceBlockLayout,
-  materialCoreLayout,
-  materialTablesLayout,
-  mediumRecordLayout,
-  sheenBlockLayout,
-  specularBlockLayout,
-  textureBindingLayout,
-  transmissionBlockLayout,
-  volumeBlockLayout,
-} from '../../gpu-layout/records.ts';
+import { materialCoreLayout, materialTablesLayout, mediumRecordLayout, textureBindingLayout } from '../../gpu-layout/records.ts';
+import { absorptionCoefficient, anyMaterialExtensions, type MaterialExtensionKey, type MaterialExtensionSpec, type PackContext } from '../../materials/extensions/index.ts';
 import { defineStructLayout, type StructLayout } from '../../gpu-layout/struct-layout.ts';
 import type { Vec4Heap } from '../../gpu-layout/vec4-heap.ts';
 import type { AlbedoTables } from '../../materials/energy/albedo-tables.ts';
 import { packedAlbedoTable } from '../../materials/energy/table-lookup.ts';
-import { spectralResponseTable } from '../../materials/spectral/spectral-response.ts';
+import { spectralResponseTable } from '../../materials/extensions/dispersion/spectral-response.ts';
 import { materialTextureRefs, type NormalizedMaterial, type NormalizedTextureRef } from '../../scene/material.ts';
 
 /** Heap offset of the TextureInfo of texture `texture` decoded as sRGB or linear data. */
@@ -57,18 +36,7 @@ export function textureUsages(materials: readonly NormalizedMaterial[]): { textu
 }
 
 /** Which KHR material features a scene's materials use (each is a shader feature flag). */
-export interface MaterialFeatureUses {
-  specular: boolean;
-  transmission: boolean;
-  volume: boolean;
-  clearcoat: boolean;
-  sheen: boolean;
-  iridescence: boolean;
-  anisotropy: boolean;
-  diffuseTransmission: boolean;
-  dispersion: boolean;
-  energyCompensation: boolean;
-}
+export type MaterialFeatureUses = Record<MaterialExtensionKey | 'energyCompensation', boolean>;
 
 /** Scene-wide material decisions made before packing: medium ids, tables, features. */
 export interface MaterialPlan {
@@ -77,7 +45,7 @@ export interface MaterialPlan {
   readonly mediumIds: ReadonlyMap<NormalizedMaterial, number>;
   /** The materials with a medium, in id order. */
   readonly media: readonly NormalizedMaterial[];
-  readonly tables: Readonly<Record<keyof AlbedoTables | 'media' | 'spectral', boolean>>;
+  readonly tables: Record<keyof AlbedoTables | 'media' | 'spectral', boolean>;
   readonly uses: Readonly<MaterialFeatureUses>;
 }
 
@@ -99,27 +67,18 @@ export function planMaterials(materials: readonly NormalizedMaterial[], options:
     media.push(m);
     mediumIds.set(m, media.length);
   });
-  const uses: MaterialFeatureUses = {
-    specular: any((m) => m.specular !== undefined),
-    transmission: any((m) => m.transmission !== undefined),
-    volume: media.length > 0,
-    clearcoat: any((m) => m.clearcoat !== undefined),
-    sheen: any((m) => m.sheen !== undefined),
-    iridescence: any((m) => m.iridescence !== undefined),
-    anisotropy: any((m) => m.anisotropy !== undefined),
-    diffuseTransmission: any((m) => m.diffuseTransmission !== undefined),
-    dispersion: any((m) => m.dispersion !== undefined),
-    energyCompensation: energyCompensation && any(hasCompensableLobe),
-  };
-  const tables = {
+  const uses = Object.fromEntries(anyMaterialExtensions.map((e) => [e.key, any((m) => extensionOf(m, e) !== undefined)])) as MaterialFeatureUses;
+  uses.energyCompensation = energyCompensation && any(hasCompensableLobe);
+  const tables: MaterialPlan['tables'] = {
     ggx: uses.energyCompensation,
     dielectric: uses.energyCompensation,
     dielectricTransmission: uses.energyCompensation && uses.transmission,
-    clearcoat: uses.clearcoat,
-    sheen: uses.sheen,
-    media: uses.volume,
-    spectral: uses.dispersion,
+    clearcoat: false,
+    sheen: false,
+    media: false,
+    spectral: false,
   };
+  for (const e of anyMaterialExtensions) for (const t of e.tables ?? []) if (uses[e.key as MaterialExtensionKey]) tables[t] = true;
   return { energyCompensation, mediumIds, media, tables, uses };
 }
 
@@ -133,13 +92,16 @@ function appendFloats(heap: Vec4Heap, values: Float32Array): number {
   return offset;
 }
 
-/** -ln(attenuationColor) / attenuationDistance per channel (KHR_materials_volume), finite. */
-export function absorptionCoefficient(volume: NonNullable<NormalizedMaterial['volume']>): [number, number, number] {
-  return volume.attenuationColor.map((c) => {
-    if (volume.attenuationDistance === Infinity || c === 1) return 0;
-    // A black channel absorbs everything at any distance; the largest f32 keeps it finite.
-    return c === 0 ? 3.4e38 : Math.min(-Math.log(c) / volume.attenuationDistance, 3.4e38);
-  }) as [number, number, number];
+export { absorptionCoefficient };
+
+/** A material's normalized block of extension `e` (undefined: absent). */
+function extensionOf(m: NormalizedMaterial, e: MaterialExtensionSpec<never>): unknown {
+  return (m as unknown as Record<string, unknown>)[e.key];
+}
+
+/** Whether extension `e` of material `m` reaches the GPU (its flag and block). */
+function packedExtension(m: NormalizedMaterial, e: MaterialExtensionSpec<never>, context: PackContext): boolean {
+  return extensionOf(m, e) !== undefined && (e.packed?.(context) ?? true);
 }
 
 /**
@@ -191,33 +153,18 @@ function packBinding(heap: Vec4Heap, ref: NormalizedTextureRef | undefined, srgb
  * (metallic 0, ior 1, no extension) and smooth ones have none, so they skip the table lookups.
  */
 export function hasCompensableLobe(m: NormalizedMaterial): boolean {
-  if (m.specular || m.transmission || m.clearcoat || m.sheen || m.iridescence || m.anisotropy || m.diffuseTransmission) return true;
+  if (anyMaterialExtensions.some((e) => e.compensable && extensionOf(m, e) !== undefined)) return true;
   return m.roughness > 0 && (m.metallic > 0 || m.ior !== 1);
 }
 
 /** The MATERIAL_FLAG_* bits of a material's KHR extensions. */
 export function materialExtensionFlags(m: NormalizedMaterial, plan: MaterialPlan): number {
   let flags = 0;
-  if (m.specular) flags |= MATERIAL_FLAG_SPECULAR;
-  if (m.transmission) flags |= MATERIAL_FLAG_TRANSMISSION;
-  if (plan.mediumIds.has(m)) flags |= MATERIAL_FLAG_VOLUME;
-  if (m.clearcoat) flags |= MATERIAL_FLAG_CLEARCOAT;
-  if (m.sheen) flags |= MATERIAL_FLAG_SHEEN;
-  if (m.iridescence) flags |= MATERIAL_FLAG_IRIDESCENCE;
-  if (m.anisotropy) flags |= MATERIAL_FLAG_ANISOTROPY;
-  if (m.diffuseTransmission) flags |= MATERIAL_FLAG_DIFFUSE_TRANSMISSION;
-  if (m.dispersion !== undefined && plan.mediumIds.has(m)) flags |= MATERIAL_FLAG_DISPERSION;
+  const context: PackContext = { medium: plan.mediumIds.get(m) };
+  for (const e of anyMaterialExtensions) if (packedExtension(m, e, context)) flags |= 1 << e.flag.bit;
   if (plan.energyCompensation && hasCompensableLobe(m)) flags |= MATERIAL_FLAG_ENERGY_COMPENSATION;
   if (m.ior === 0) flags |= MATERIAL_FLAG_IOR_INFINITE;
   return flags;
-}
-
-/** Writes one extension block (reserving it first) and returns its offset, INDEX_NONE when absent. */
-function block(heap: Vec4Heap, layout: StructLayout, present: boolean, values: () => Record<string, number | ArrayLike<number>>): number {
-  if (!present) return INDEX_NONE;
-  const offset = heap.reserve(layout);
-  heap.write(layout, offset, values());
-  return offset;
 }
 
 /**
@@ -229,39 +176,17 @@ export function packMaterials(heap: Vec4Heap, materials: readonly NormalizedMate
   const bind = (ref: NormalizedTextureRef | undefined, srgb: boolean): number => packBinding(heap, ref, srgb, infoOffset);
   return materials.map((m) => {
     const core = heap.reserve(materialCoreLayout);
-    const s = m.specular;
-    const specular = block(heap, specularBlockLayout, s !== undefined, () => ({
-      specularColor: s!.colorFactor, specular: s!.factor, specularTexture: bind(s!.texture, false), specularColorTexture: bind(s!.colorTexture, true),
-    }));
-    const t = m.transmission;
-    const transmission = block(heap, transmissionBlockLayout, t !== undefined, () => ({ transmission: t!.factor, transmissionTexture: bind(t!.texture, false) }));
-    const v = m.volume;
-    const medium = plan.mediumIds.get(m);
-    const volume = block(heap, volumeBlockLayout, v !== undefined && medium !== undefined, () => ({
-      attenuation: absorptionCoefficient(v!), thickness: v!.thicknessFactor, thicknessTexture: bind(v!.thicknessTexture, false), medium: medium!,
-    }));
-    const c = m.clearcoat;
-    const clearcoat = block(heap, clearcoatBlockLayout, c !== undefined, () => ({
-      clearcoat: c!.factor, roughness: c!.roughnessFactor, clearcoatTexture: bind(c!.texture, false), roughnessTexture: bind(c!.roughnessTexture, false),
-      normalTexture: bind(c!.normalTexture, false),
-    }));
-    const sh = m.sheen;
-    const sheen = block(heap, sheenBlockLayout, sh !== undefined, () => ({
-      color: sh!.colorFactor, roughness: sh!.roughnessFactor, colorTexture: bind(sh!.colorTexture, true), roughnessTexture: bind(sh!.roughnessTexture, false),
-    }));
-    const ir = m.iridescence;
-    const iridescence = block(heap, iridescenceBlockLayout, ir !== undefined, () => ({
-      iridescence: ir!.factor, ior: ir!.ior, thicknessMinimum: ir!.thicknessMinimum, thicknessMaximum: ir!.thicknessMaximum,
-      iridescenceTexture: bind(ir!.texture, false), thicknessTexture: bind(ir!.thicknessTexture, false),
-    }));
-    const an = m.anisotropy;
-    const anisotropy = block(heap, anisotropyBlockLayout, an !== undefined, () => ({
-      strength: an!.strength, rotationCos: Math.cos(an!.rotation), rotationSin: Math.sin(an!.rotation), texture: bind(an!.texture, false),
-    }));
-    const dt = m.diffuseTransmission;
-    const diffuseTransmission = block(heap, diffuseTransmissionBlockLayout, dt !== undefined, () => ({
-      color: dt!.colorFactor, diffuseTransmission: dt!.factor, texture: bind(dt!.texture, false), colorTexture: bind(dt!.colorTexture, true),
-    }));
+    const context: PackContext = { medium: plan.mediumIds.get(m) };
+    // Each extension block is reserved before its texture bindings are appended.
+    const blocks: Record<string, number> = {};
+    for (const e of anyMaterialExtensions) {
+      if (!e.block) continue;
+      blocks[e.key] = INDEX_NONE;
+      if (!packedExtension(m, e, context)) continue;
+      const offset = heap.reserve(e.block.layout);
+      heap.write(e.block.layout, offset, e.block.pack(extensionOf(m, e) as never, bind, context));
+      blocks[e.key] = offset;
+    }
     heap.write(materialCoreLayout, core, {
       baseColor: m.baseColor,
       emission: m.emission,
@@ -274,14 +199,7 @@ export function packMaterials(heap: Vec4Heap, materials: readonly NormalizedMate
       metallicRoughnessTexture: bind(m.metallicRoughnessTexture, false),
       normalTexture: bind(m.normalTexture, false),
       emissiveTexture: bind(m.emissiveTexture, true),
-      specular,
-      transmission,
-      volume,
-      clearcoat,
-      sheen,
-      iridescence,
-      anisotropy,
-      diffuseTransmission,
+      ...blocks,
       dispersion: m.dispersion ?? 0,
     });
     return core;
@@ -294,12 +212,7 @@ export function materialHeapCells(materials: readonly NormalizedMaterial[]): num
   let cells = 0;
   for (const m of materials) {
     cells += materialCoreLayout.size / 16 + materialTextureRefs(m).length * binding;
-    for (const [present, layout] of [
-      [m.specular, specularBlockLayout], [m.transmission, transmissionBlockLayout], [m.volume, volumeBlockLayout], [m.clearcoat, clearcoatBlockLayout],
-      [m.sheen, sheenBlockLayout], [m.iridescence, iridescenceBlockLayout], [m.anisotropy, anisotropyBlockLayout], [m.diffuseTransmission, diffuseTransmissionBlockLayout],
-    ] as const) {
-      if (present) cells += layout.size / 16;
-    }
+    for (const e of anyMaterialExtensions) if (e.block && extensionOf(m, e) !== undefined) cells += e.block.layout.size / 16;
   }
   return cells;
 }

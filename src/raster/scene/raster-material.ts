@@ -1,11 +1,14 @@
 /**
  * Raster materials: the glTF core material (validated by the shared `normalizeMaterial`) plus the
  * KHR extension factors and textures the raster renderer shades as the Khronos sample viewer does:
- * ior, specular, clearcoat, sheen, transmission and volume attenuation. Extensions the raster
- * renderer does not draw (iridescence, anisotropy, dispersion, diffuse transmission) are refused
- * with INVALID_MATERIAL when set to anything but their defaults, never drawn as something else.
+ * ior and the registry extensions marked `raster: 'drawn'` (specular, clearcoat, sheen,
+ * transmission, volume attenuation). The others (`raster: 'refused'`: iridescence, anisotropy,
+ * dispersion, diffuse transmission, and any new extension until the raster renderer draws it) are
+ * refused with INVALID_MATERIAL when set to anything but their defaults, never drawn as something
+ * else.
  */
 import { describe, fail, isArrayLike, requireNumberInRange } from '../../errors/validate.ts';
+import { anyMaterialExtensions } from '../../materials/extensions/index.ts';
 import { normalizeMaterial, normalizeTextureRef, type NormalizedMaterial, type NormalizedTextureRef } from '../../scene/material.ts';
 import type { WavefrontMaterialInput } from '../../scene/types.ts';
 import { rasterTextureSlots, type RasterTextureSlot } from '../gpu/raster-layout.ts';
@@ -27,13 +30,15 @@ export interface RasterMaterial {
   readonly textures: Partial<Record<RasterTextureSlot, NormalizedTextureRef>>;
 }
 
-const drawnFactors = new Set([
-  'specularFactor', 'specularColorFactor', 'clearcoatFactor', 'clearcoatRoughnessFactor', 'sheenColorFactor', 'sheenRoughnessFactor',
-  'transmissionFactor', 'thicknessFactor', 'attenuationColor', 'attenuationDistance',
-]);
+const drawnExtensions = anyMaterialExtensions.filter((e) => e.raster === 'drawn');
+const refusedExtensions = anyMaterialExtensions.filter((e) => e.raster === 'refused');
+const drawnFactors = new Set(drawnExtensions.flatMap((e) => e.factors.map((f) => f.key)));
 const drawnTextures = new Set<string>(rasterTextureSlots.map((s) => s.name).filter((n) => !['baseColorTexture', 'metallicRoughnessTexture', 'normalTexture', 'occlusionTexture', 'emissiveTexture'].includes(n)));
-/** Volume thickness textures only modulate the slab length; the raster renderer uses the factor. */
-const ignoredTextures = new Set<string>(['thicknessTexture']);
+/**
+ * Textures of drawn extensions without a raster slot (volume thickness textures only modulate the
+ * slab length; the raster renderer uses the factor).
+ */
+const ignoredTextures = new Set<string>(drawnExtensions.flatMap((e) => e.textures.map((t) => t.key)).filter((k) => !drawnTextures.has(k)));
 
 function unit(value: unknown, field: string, fallback: number): number {
   return value === undefined ? fallback : requireNumberInRange(value, field, { min: 0, max: 1 }, 'INVALID_MATERIAL');
@@ -56,14 +61,9 @@ export function normalizeRasterMaterial(input: WavefrontMaterialInput | undefine
   const core = normalizeMaterial(coreInput as WavefrontMaterialInput, field, { textureCount });
   // Extensions the path tracer renders but this renderer does not draw: refused, never approximated
   // by something else (the factor that turns each on is named).
-  const undrawn: [unknown, string][] = [
-    [core.iridescence, 'iridescenceFactor'],
-    [core.anisotropy, 'anisotropyStrength'],
-    [core.diffuseTransmission, 'diffuseTransmissionFactor'],
-    [core.dispersion, 'dispersion'],
-  ];
-  for (const [present, key] of undrawn) {
-    if (present !== undefined) fail('INVALID_MATERIAL', `${field}.${key}`, 'the raster renderer does not draw this extension (the path tracer renders it); remove it for the raster view');
+  for (const e of refusedExtensions) {
+    const key = e.enabledBy;
+    if ((core as unknown as Record<string, unknown>)[e.key] !== undefined) fail('INVALID_MATERIAL', `${field}.${key}`, 'the raster renderer does not draw this extension (the path tracer renders it); remove it for the raster view');
   }
   const textures: RasterMaterial['textures'] = {};
   for (const slot of rasterTextureSlots) {

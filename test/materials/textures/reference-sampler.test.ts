@@ -15,7 +15,7 @@ import {
 import { textureBindingLayout } from '../../../src/gpu-layout/records.ts';
 import { Vec4Heap } from '../../../src/gpu-layout/vec4-heap.ts';
 import { sampleBoundTexture, sampleTextureInfo, textureLod, type Rgba, type TextureBindingRecord } from '../../../src/materials/textures/reference-sampler.ts';
-import { textureTransformMatrix } from '../../../src/materials/textures/texture-transform.ts';
+import { textureTransformMatrix } from '../../../src/scene/texture-transform.ts';
 import { buildTextureAtlas } from '../../../src/materials/textures/texture-atlas.ts';
 import type { WavefrontTextureTransformInput } from '../../../src/scene/types.ts';
 import { rng } from '../../helpers/random.ts';

@@ -37,7 +37,7 @@ import {
   type Rgba,
 } from '../../../src/materials/textures/reference-sampler.ts';
 import { buildTextureAtlas, type TextureUsage } from '../../../src/materials/textures/texture-atlas.ts';
-import { textureTransformMatrix } from '../../../src/materials/textures/texture-transform.ts';
+import { textureTransformMatrix } from '../../../src/scene/texture-transform.ts';
 import { uploadTextureAtlas } from '../../../src/materials/textures/upload-texture-atlas.ts';
 import type { WavefrontTextureInput, WavefrontTextureTransformInput, WavefrontWrapMode } from '../../../src/scene/types.ts';
 import { readBuffer, testDevice, uploadBuffer } from '../../helpers/gpu.ts';

@@ -1,7 +1,7 @@
 import assert from 'node:assert/strict';
 import { test } from 'node:test';
 import { GpuRendererError } from '../../../src/errors/gpu-renderer-error.ts';
-import { applyTextureTransform, textureTransformMatrix } from '../../../src/materials/textures/texture-transform.ts';
+import { applyTextureTransform, textureTransformMatrix } from '../../../src/scene/texture-transform.ts';
 
 const close = (a: readonly number[], b: readonly number[], label: string): void => {
   assert.equal(a.length, b.length);

@@ -1,9 +1,11 @@
 /**
- * The KHR_materials_sheen BRDF in double precision (the CPU reference of lobes/sheen-charlie.wesl):
+ * The KHR_materials_sheen BRDF in double precision (the CPU reference of sheen-charlie.wesl):
  * the "Charlie" distribution and visibility of Conty Estevez and Kulla 2017, "Production Friendly
  * Microfacet Sheen BRDF", in the forms of the KHR_materials_sheen implementation notes, with the
  * Khronos sample viewer's alpha = sheenRoughness^2.
  */
+import { none, type LobeValue } from '../../reference/lobes.ts';
+import { normalize, type Vec3 } from '../../reference/vector.ts';
 
 /** Sheen roughness below this is raised to it: the distribution's exponent 1 / alpha stays finite. */
 export const sheenMinRoughness = 0.01;
@@ -42,4 +44,11 @@ export function sheenBrdf(cosO: number, cosI: number, cosH: number, sheenRoughne
   const alpha = sheenAlpha(sheenRoughness);
   const v = 1 / ((1 + charlieLambda(cosO, alpha) + charlieLambda(cosI, alpha)) * 4 * cosO * cosI);
   return charlieD(cosH, alpha) * v;
+}
+
+/** Charlie sheen (KHR_materials_sheen), cosine-sampled. */
+export function sheenCharlie(sheenRoughness: number, wo: Vec3, wi: Vec3): LobeValue {
+  if (wo[2] <= 0 || wi[2] <= 0) return none;
+  const h = normalize([wo[0] + wi[0], wo[1] + wi[1], wo[2] + wi[2]]);
+  return { f: sheenBrdf(wo[2], wi[2], h[2], sheenRoughness), pdf: wi[2] / Math.PI };
 }

@@ -9,7 +9,7 @@
  * every interaction is wavelength-independent then keeps its RGB weight in expectation (white
  * stays white), while refraction spreads each channel over its own wavelengths.
  */
-import { SPECTRAL_MAX_NM, SPECTRAL_MIN_NM, SPECTRAL_TABLE_NODES } from '../../gpu-layout/constants.ts';
+import { SPECTRAL_MAX_NM, SPECTRAL_MIN_NM, SPECTRAL_TABLE_NODES } from '../../../gpu-layout/constants.ts';
 
 function lobe(lambda: number, mu: number, below: number, above: number): number {
   const t = (lambda - mu) / (lambda < mu ? below : above);

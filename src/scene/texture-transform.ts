@@ -10,16 +10,12 @@
  * [0.5, 0.5] shows the lower left quadrant rotated clockwise 90 degrees) and the one glTF viewers
  * use; the extension's GLSL snippet read as column-major GLSL would give the opposite sign.
  */
-import { requireFiniteNumber, requireVec } from '../../errors/validate.ts';
-import type { WavefrontTextureTransformInput } from '../../scene/types.ts';
+import { requireFiniteNumber, requireVec } from '../errors/validate.ts';
+import type { TextureTransformRows, Vec3Row, WavefrontTextureTransformInput } from './texture-refs.ts';
 
-export type Vec3Row = [number, number, number];
+export type { TextureTransformRows, Vec3Row };
 
-/** The TextureBinding rows: transform0 = (a, b, tx), transform1 = (c, d, ty). */
-export interface TextureTransformRows {
-  transform0: Vec3Row;
-  transform1: Vec3Row;
-}
+
 
 /** The identity transform (no KHR_texture_transform). */
 export function identityTextureTransform(): TextureTransformRows {
