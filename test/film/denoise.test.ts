@@ -12,7 +12,7 @@ import { defaultDenoiseSettings } from '../../src/film/denoise/options.ts';
 import type { WavefrontPathTracingRenderer } from '../../src/pathtracer/types.ts';
 import { GpuRendererError } from '../../src/errors/gpu-renderer-error.ts';
 import { testDevice } from '../helpers/gpu.ts';
-import { cornellRenderer, lambert, meanChannel, rect, squareCamera } from '../pathtracer/output-helpers.ts';
+import { convergedCornellReference, cornellRenderer, lambert, meanChannel, rect, squareCamera } from '../pathtracer/output-helpers.ts';
 
 const settings = defaultDenoiseSettings;
 
@@ -86,15 +86,7 @@ test("denoising keeps flat regions' mean within 1% (uniform and two-albedo plane
 
 test('denoising improves PSNR against a converged render of the Cornell box and passes the denoise validation helper', async () => {
   const size = 48;
-  const reference = await cornellRenderer(size, { seed: 100, tileSize: 64 });
-  let converged: Float32Array;
-  try {
-    await reference.renderFrame({ samplesPerPixel: 256 });
-    converged = (await reference.readRadiance()).data;
-  } finally {
-    reference.destroy();
-  }
-  const ref = { width: size, height: size, data: converged };
+  const ref = await convergedCornellReference(size);
   const renderer = await cornellRenderer(size, { seed: 5, tileSize: 64, denoise: 'atrous' });
   try {
     const stats = await renderer.renderFrame({ samplesPerPixel: 16 });

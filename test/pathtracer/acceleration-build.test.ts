@@ -10,6 +10,7 @@ import { createCornellBoxScene } from '../../src/scene/cornell-box.ts';
 import { GpuRendererError } from '../../src/errors/gpu-renderer-error.ts';
 import type { AccelerationBuildMode, WavefrontMeshInput, WavefrontPathTracingOptions, WavefrontPathTracingRenderer } from '../../src/index.ts';
 import { testDevice } from '../helpers/gpu.ts';
+import { meanDifferenceZ } from '../helpers/image-stats.ts';
 
 const SIZE = 32;
 
@@ -63,21 +64,6 @@ async function render(mode: AccelerationBuildMode, pose: 0 | 1, seed: number, sp
   } finally {
     renderer.destroy();
   }
-}
-
-/** z-score of the mean per-pixel difference of two independent renders, per channel. */
-function meanDifferenceZ(a: Float32Array, b: Float32Array): number[] {
-  const n = a.length / 4;
-  return [0, 1, 2].map((c) => {
-    let sum = 0, sum2 = 0;
-    for (let i = 0; i < n; i++) {
-      const d = a[4 * i + c]! - b[4 * i + c]!;
-      sum += d;
-      sum2 += d * d;
-    }
-    const mean = sum / n;
-    return mean / Math.sqrt((sum2 - n * mean * mean) / (n - 1) / n);
-  });
 }
 
 /**

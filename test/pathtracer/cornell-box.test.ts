@@ -6,6 +6,7 @@ import assert from 'node:assert/strict';
 import { createWavefrontPathTracingComputeRenderer } from '../../src/pathtracer/index.ts';
 import { createCornellBoxScene } from '../../src/scene/cornell-box.ts';
 import { testDevice } from '../helpers/gpu.ts';
+import { meanDifferenceZ } from '../helpers/image-stats.ts';
 
 const size = 40;
 
@@ -29,22 +30,6 @@ async function render(seed: number, frames: number, sppPerFrame: number): Promis
   } finally {
     renderer.destroy();
   }
-}
-
-/** z-score of the mean per-pixel difference of two independent renders, per channel. */
-function meanDifferenceZ(a: Float32Array, b: Float32Array): number[] {
-  const n = a.length / 4;
-  return [0, 1, 2].map((c) => {
-    let sum = 0, sum2 = 0;
-    for (let i = 0; i < n; i++) {
-      const d = a[4 * i + c]! - b[4 * i + c]!;
-      sum += d;
-      sum2 += d * d;
-    }
-    const mean = sum / n;
-    const variance = (sum2 - n * mean * mean) / (n - 1);
-    return mean / Math.sqrt(variance / n);
-  });
 }
 
 test('Cornell box: two seeds agree within their standard error, with finite non-negative pixels', async () => {

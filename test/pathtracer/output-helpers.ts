@@ -25,6 +25,17 @@ export async function cornellRenderer(size: number, options: Partial<WavefrontPa
  * Renders `count` frames of one sample and returns every pixel's samples, reconstructed from the
  * progressive means m_k as s_k = k m_k - (k - 1) m_(k-1) (RGB per sample, float64).
  */
+/** A converged render of the Cornell box (256 spp, seed 100) as a linear RGBA image: the reference denoisers are compared against. */
+export async function convergedCornellReference(size: number): Promise<{ width: number; height: number; data: Float32Array }> {
+  const reference = await cornellRenderer(size, { seed: 100, tileSize: 64 });
+  try {
+    await reference.renderFrame({ samplesPerPixel: 256 });
+    return { width: size, height: size, data: (await reference.readRadiance()).data };
+  } finally {
+    reference.destroy();
+  }
+}
+
 export async function perSampleRadiance(renderer: WavefrontPathTracingRenderer, count: number): Promise<Float64Array[]> {
   const pixels = renderer.getSnapshot().width * renderer.getSnapshot().height;
   const samples: Float64Array[] = [];

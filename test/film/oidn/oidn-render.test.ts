@@ -7,7 +7,7 @@ import assert from 'node:assert/strict';
 import { denoiseOidnReference } from '../../../src/film/denoise/oidn/oidn-reference.ts';
 import { loadOidnModel } from '../../../src/film/denoise/oidn/weights.ts';
 import { displayPeakSignalToNoiseRatio } from '../../../src/film/metrics/display.ts';
-import { cornellRenderer } from '../../pathtracer/output-helpers.ts';
+import { convergedCornellReference, cornellRenderer } from '../../pathtracer/output-helpers.ts';
 
 const mean = (data: Float32Array, channel: number): number => {
   let s = 0;
@@ -39,15 +39,7 @@ test("denoise: 'oidn' runs the network on the film: equal to the CPU evaluation 
 
 test('OIDN keeps the Cornell box mean within 0.5% and beats the a-trous preview against a converged render (4 and 16 spp)', async () => {
   const size = 48;
-  const reference = await cornellRenderer(size, { seed: 100, tileSize: 64 });
-  let converged: Float32Array;
-  try {
-    await reference.renderFrame({ samplesPerPixel: 256 });
-    converged = (await reference.readRadiance()).data;
-  } finally {
-    reference.destroy();
-  }
-  const ref = { width: size, height: size, data: converged };
+  const ref = await convergedCornellReference(size);
   // denoise: true picks the better denoiser the device runs: OIDN.
   const oidn = await cornellRenderer(size, { seed: 5, tileSize: 64, denoise: true });
   const atrous = await cornellRenderer(size, { seed: 5, tileSize: 64, denoise: 'atrous' });
