@@ -9,6 +9,7 @@ import { generatePrograms } from './shader-build/programs.ts';
 import { weslProjectSources } from './shader-build/wesl-project.ts';
 import { embedCodecs } from './codec-build/embed-codecs.ts';
 import { generateOidnWeightModules } from './oidn-weights.ts';
+import { materialLayerReferencesModule, materialLayerReferencesPath } from './shader-build/material-layers.ts';
 
 const sources = weslProjectSources();
 let programCount: number;
@@ -19,6 +20,9 @@ try {
   process.exit(1);
 }
 const root = fileURLToPath(new URL('..', import.meta.url));
+const layerReferences = materialLayerReferencesModule();
+const layerReferencesPath = `${root}${materialLayerReferencesPath}`;
+if (!existsSync(layerReferencesPath) || readFileSync(layerReferencesPath, 'utf8') !== layerReferences) writeFileSync(layerReferencesPath, layerReferences);
 const codecs = embedCodecs();
 for (const codec of codecs) {
   const path = `${root}${codec.path}`;

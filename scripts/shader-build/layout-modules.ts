@@ -9,7 +9,8 @@
  * - `package::layout::bvh_build_bindings`: the GPU BVH builder's bindings (accel/gpu-build/bindings.ts);
  * - `package::layout::oidn_bindings`: the OIDN network's bindings (film/denoise/oidn/bindings.ts);
  * - `package::layout::heaps`: `load_<record>(offset)` readers of records stored in vec4 heaps;
- * - `package::layout::features`: the `override` specialisation constants (shaders/features.ts).
+ * - `package::layout::features`: the `override` specialisation constants (shaders/features.ts);
+ * - `package::layout::material_layers`: the KHR extension layers of the glTF BSDF (material-layers.ts).
  */
 import { bindingDeclaration, pathTracerBindings, type BindingSpec } from '../../src/gpu-layout/bindings.ts';
 import { gpuConstants } from '../../src/gpu-layout/constants.ts';
@@ -19,6 +20,8 @@ import { oidnBindings } from '../../src/film/denoise/oidn/bindings.ts';
 import { displayBindings } from '../../src/shaders/display-bindings.ts';
 import { bvhBuildBindings } from '../../src/accel/gpu-build/bindings.ts';
 import { shaderFeatures } from '../../src/shaders/features.ts';
+import { anyMaterialExtensions } from '../../src/materials/extensions/index.ts';
+import { materialLayersModule } from './material-layers.ts';
 
 /** Module path (relative, `/`-separated, `.wesl`) -> source. */
 export type WeslSources = Record<string, string>;
@@ -95,9 +98,9 @@ function heapsModule(): string {
 }
 
 function featuresModule(): string {
-  return Object.entries(shaderFeatures)
-    .map(([name, f]) => `// ${f.doc}\noverride ${name}: bool = ${f.default};`)
-    .join('\n');
+  const overrides = Object.entries(shaderFeatures).map(([name, f]) => `// ${f.doc}\noverride ${name}: bool = ${f.default};`);
+  const extensions = anyMaterialExtensions.map((e) => e.feature.name).join(' || ');
+  return `${overrides.join('\n')}\n// Whether any KHR material extension is compiled in (registry order).\nfn any_material_extension() -> bool { return ${extensions}; }\n`;
 }
 
 /** The generated layout modules, keyed like files under src/ (see wesl-project.ts). */
@@ -111,6 +114,7 @@ export function layoutModules(): WeslSources {
     'layout/oidn_bindings.wesl': `import package::film::denoise::oidn::precision::Tensor4;\n${bindingsModule(oidnBindings)}`,
     'layout/heaps.wesl': heapsModule(),
     'layout/features.wesl': featuresModule(),
+    'layout/material_layers.wesl': materialLayersModule(),
   };
 }
 

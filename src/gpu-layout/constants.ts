@@ -166,6 +166,12 @@ const materialExtensionFlags: Record<string, number> = Object.fromEntries(anyMat
 /** Every extension bit (what evaluate-materials copies into SurfaceRecord.flags). */
 export const MATERIAL_EXTENSION_MASK = Object.values(materialExtensionFlags).reduce((a, b) => a | b, MATERIAL_FLAG_ENERGY_COMPENSATION | MATERIAL_FLAG_IOR_INFINITE);
 
+/**
+ * vec4s of PackedLobeParams.layers (materials/bsdf.wesl): two for each KHR extension that is a layer
+ * over the base BSDF (its layer.wesl `unpack_params`), in registry order.
+ */
+export const PACKED_LAYER_VEC4S = 2 * anyMaterialExtensions.filter((e) => e.layer !== undefined).length;
+
 function extensionFlag(e: { flag: { bit: number } }): number {
   return 1 << e.flag.bit;
 }
@@ -344,6 +350,7 @@ export const gpuConstants: Readonly<Record<string, number>> = Object.freeze({
   MATERIAL_FLAG_ENERGY_COMPENSATION,
   MATERIAL_FLAG_IOR_INFINITE,
   MATERIAL_EXTENSION_MASK,
+  PACKED_LAYER_VEC4S,
   MATERIAL_TABLES_OFFSET,
   ENERGY_TABLE_MU_NODES,
   ENERGY_TABLE_ROUGHNESS_NODES,

@@ -401,10 +401,15 @@ export const surfaceRecordLayout: StructLayout = defineStructLayout('SurfaceReco
   ['roughness', 'f32'],
   ['ior', 'f32'],
   ['coneWidth', 'f32', 'ray cone width at the hit'],
-  ['clearcoatNormal', 'u32', 'octahedral clearcoat normal'],
-  ['layers0', 'vec4u', 'f16 pairs: (specular, transmission), (specularColor.rg), (specularColor.b, diffuseTransmission), (clearcoat, clearcoatRoughness)'],
-  ['layers1', 'vec4u', 'f16 pairs: (sheenRoughness, anisotropy), (iridescence, iridescenceThickness nm); unorm8: sheenColor, diffuseTransmissionColor'],
+  ['extensions0', 'vec4u', "the base's KHR parameters, f16 pairs: (specular, transmission), (specularColor.rg), (specularColor.b, diffuseTransmission), (anisotropy, iridescence)"],
+  ['extensions1', 'vec4u', 'f16 pair (iridescenceThickness nm, 0); unorm8 diffuseTransmissionColor; 0; 0'],
+  ...layerFields(),
 ]);
+
+/** One vec4u per KHR extension layer over the base BSDF: what its layer.wesl `pack` writes. */
+function layerFields(): StructFieldSpec[] {
+  return anyMaterialExtensions.flatMap((e): StructFieldSpec[] => (e.layer ? [[`${e.key}Layer`, 'vec4u', `${e.name} layer (its layer.wesl pack)`]] : []));
+}
 
 /** An any-hit query carrying the contribution it adds if unoccluded (NEE, pbrt-v4 style). */
 export const shadowRayLayout: StructLayout = defineStructLayout('ShadowRay', 2, [

@@ -12,39 +12,39 @@
 
 import {
   MATERIAL_FLAG_ANISOTROPY,
-  MATERIAL_FLAG_CLEARCOAT,
   MATERIAL_FLAG_DIFFUSE_TRANSMISSION,
   MATERIAL_FLAG_ENERGY_COMPENSATION,
   MATERIAL_FLAG_IOR_INFINITE,
   MATERIAL_FLAG_IRIDESCENCE,
-  MATERIAL_FLAG_SHEEN,
   MATERIAL_FLAG_SPECULAR,
   MATERIAL_FLAG_TRANSMISSION,
   MATERIAL_FLAG_VOLUME,
 } from '../gpu-layout/constants.ts';
 import { luminance } from '../lighting/emissive-lights.ts';
-import {
-  dielectricEtaCoordinate,
-  lookupClearcoatAlbedo,
-  lookupDielectricAlbedo,
-  lookupDielectricAlbedoAverage,
-  lookupDielectricInterfaceAlbedo,
-  lookupGgxAlbedo,
-  lookupSheenAlbedo,
-} from './energy/table-lookup.ts';
+import { dielectricEtaCoordinate, lookupDielectricAlbedo, lookupDielectricAlbedoAverage, lookupDielectricInterfaceAlbedo, lookupGgxAlbedo } from './energy/table-lookup.ts';
 import { iridescentFresnel } from './extensions/iridescence/reference.ts';
 import { dielectricFresnelRgb, fresnelDielectric, fresnelSchlick, iorToF0 } from './reference/fresnel.ts';
 import { anisotropicAlphas, ggxDAniso, ggxG2, ggxVisibleNormalPdf, ggxVisibleNormalSamplePoint, sampleGgxVisibleNormal, type Alphas } from './reference/microfacet.ts';
 import { lobeAlphas } from './reference/lobes.ts';
-import { sheenBrdf } from './extensions/sheen/reference.ts';
-import { cross, maxComponent, normalize as normalize3 } from './reference/vector.ts';
+import type { LayerParams, MaterialLayerReference } from './material-layer.ts';
+import { materialLayerReferences } from './material-layers.generated.ts';
+import { maxComponent } from './reference/vector.ts';
 
 export { fresnelDielectric };
 
 export type Vec3 = readonly [number, number, number];
 
-/** A glTF material as the BSDF sees it; the optional fields are the KHR extensions (absent: not used). */
-export interface GltfBsdfMaterial {
+/** The parameters of the KHR extension layers over the base (material-layers.generated.ts), by registry key. */
+export type GltfBsdfLayers = { [L in (typeof materialLayerReferences)[number] as L['key']]?: LayerParams<L> };
+
+/**
+ * A glTF material as the BSDF sees it; the optional fields are the KHR extensions (absent: not
+ * used), the layers among them (clearcoat, sheen) under their registry keys.
+ */
+export type GltfBsdfMaterial = GltfBsdfBase & GltfBsdfLayers;
+
+/** The base of the glTF BSDF: metallic-roughness and the KHR extensions that change it. */
+export interface GltfBsdfBase {
   /** Linear RGB in [0, 1]. */
   baseColor: Vec3;
   metallic: number;
@@ -61,10 +61,6 @@ export interface GltfBsdfMaterial {
   transmission?: { factor: number; refractive: boolean };
   /** KHR_materials_diffuse_transmission. */
   diffuseTransmission?: { factor: number; color: Vec3 };
-  /** KHR_materials_clearcoat; `normal` in the local frame (default +z). */
-  clearcoat?: { factor: number; roughness: number; normal?: Vec3 };
-  /** KHR_materials_sheen. */
-  sheen?: { color: Vec3; roughness: number };
   /** KHR_materials_iridescence (thickness in nm). */
   iridescence?: { factor: number; thickness: number; ior: number };
   /** KHR_materials_anisotropy strength along the local x axis. */
@@ -79,8 +75,7 @@ export function gltfBsdfExtensionFlags(m: GltfBsdfMaterial): number {
   if (m.specular) f |= MATERIAL_FLAG_SPECULAR;
   if (m.transmission) f |= MATERIAL_FLAG_TRANSMISSION | (m.transmission.refractive ? MATERIAL_FLAG_VOLUME : 0);
   if (m.diffuseTransmission) f |= MATERIAL_FLAG_DIFFUSE_TRANSMISSION;
-  if (m.clearcoat) f |= MATERIAL_FLAG_CLEARCOAT;
-  if (m.sheen) f |= MATERIAL_FLAG_SHEEN;
+  for (const layer of layersOf(m)) f |= layer.reference.flag;
   if (m.iridescence) f |= MATERIAL_FLAG_IRIDESCENCE;
   if (m.anisotropy !== undefined) f |= MATERIAL_FLAG_ANISOTROPY;
   if (m.energyCompensation) f |= MATERIAL_FLAG_ENERGY_COMPENSATION;
@@ -88,20 +83,43 @@ export function gltfBsdfExtensionFlags(m: GltfBsdfMaterial): number {
   return f;
 }
 
-/** The 32 floats of the GPU BSDF's PackedLobeParams for a material (gltf-bsdf.wesl unpack_params). */
+/** Every layer reference, loosely typed, for code that handles them all alike. */
+const anyLayerReferences = materialLayerReferences as unknown as readonly MaterialLayerReference<string, never>[];
+
+/** A layer's parameters in a material (undefined: the material does not have it). */
+function layerParams(m: GltfBsdfMaterial, reference: MaterialLayerReference<string, never>): never | undefined {
+  return (m as unknown as Readonly<Record<string, never | undefined>>)[reference.key];
+}
+
+/** The layers a material has, outermost first, with their parameters. */
+function layersOf(m: GltfBsdfMaterial): { reference: MaterialLayerReference<string, never>; params: never }[] {
+  return anyLayerReferences.flatMap((reference) => {
+    const params = layerParams(m, reference);
+    return params === undefined ? [] : [{ reference, params }];
+  });
+}
+
+/** Floats of each layer in PackedLobeParams.layers (two vec4s). */
+const packedLayerFloats = 8;
+
+/** The GPU BSDF's PackedLobeParams for a material (gltf-bsdf.wesl unpack_params), layers included. */
 export function packGltfBsdfParams(m: GltfBsdfMaterial): number[] {
   const ext = gltfBsdfExtensionFlags(m);
-  const cn = m.clearcoat?.normal ?? [0, 0, 1];
-  return [
+  const base = [
     ...m.baseColor, m.metallic,
     m.roughness, Number.isFinite(m.ior) ? m.ior : 0, ext, m.anisotropy ?? 0,
     ...(m.specular?.color ?? [1, 1, 1]), m.specular?.factor ?? 1,
     ...(m.diffuseTransmission?.color ?? [1, 1, 1]), m.diffuseTransmission?.factor ?? 0,
-    ...cn, m.clearcoat?.factor ?? 0,
-    ...(m.sheen?.color ?? [0, 0, 0]), m.sheen?.roughness ?? 0,
-    m.transmission?.factor ?? 0, m.clearcoat?.roughness ?? 0, m.iridescence?.factor ?? 0, m.iridescence?.thickness ?? 0,
-    m.iridescence?.ior ?? 1.3, 0, 0, 0,
+    m.transmission?.factor ?? 0, m.iridescence?.factor ?? 0, m.iridescence?.thickness ?? 0, m.iridescence?.ior ?? 1.3,
+    ...new Array<number>(12).fill(0),
   ];
+  const layers = anyLayerReferences.flatMap((reference) => {
+    const params = layerParams(m, reference);
+    const packed = params === undefined ? [] : reference.pack(params);
+    if (packed.length > packedLayerFloats) throw new Error(`layer ${reference.key} packs ${packed.length} floats, more than ${packedLayerFloats}`);
+    return [...packed, ...new Array<number>(packedLayerFloats - packed.length).fill(0)];
+  });
+  return [...base, ...layers];
 }
 
 /** Whether a material uses any extension (the plain core otherwise). */
@@ -194,8 +212,6 @@ export function gltfBsdfPdf(m: GltfBsdfMaterial, wo: Vec3, wi: Vec3): number {
 
 // ---- The KHR extensions (mirrors gltf-bsdf.wesl) -------------------------------------------------
 
-const clearcoatIor = 1.5;
-
 const add3 = (a: Vec3, b: Vec3): Vec3 => [a[0] + b[0], a[1] + b[1], a[2] + b[2]];
 const mul3 = (a: Vec3, b: Vec3): Vec3 => [a[0] * b[0], a[1] * b[1], a[2] * b[2]];
 const scale3 = (a: Vec3, k: number): Vec3 => [a[0] * k, a[1] * k, a[2] * k];
@@ -232,27 +248,6 @@ function metalFresnel(m: GltfBsdfMaterial, cos: number): Vec3 {
   const f = fresnelSchlick(m.baseColor, cos);
   if (!m.iridescence) return f;
   return mix3(f, iridescentFresnel(1, m.iridescence.ior, m.baseColor, m.iridescence.thickness, cos), m.iridescence.factor);
-}
-
-function frameAround(n: Vec3): { t: Vec3; b: Vec3; n: Vec3 } {
-  const a: Vec3 = Math.abs(n[0]) > 0.9 ? [0, 1, 0] : [1, 0, 0];
-  const t = normalize3(cross(a, n));
-  return { t, b: cross(n, t), n };
-}
-
-const toLocal = (f: { t: Vec3; b: Vec3; n: Vec3 }, v: Vec3): Vec3 => [dot(v, f.t), dot(v, f.b), dot(v, f.n)];
-
-function coatOf(m: GltfBsdfMaterial, wo: Vec3): { wo: Vec3; frame: { t: Vec3; b: Vec3; n: Vec3 }; scale: number; alpha: number } {
-  const c = m.clearcoat!;
-  const frame = frameAround(c.normal ?? [0, 0, 1]);
-  const woC = toLocal(frame, wo);
-  const scale = woC[2] > 0 ? 1 - c.factor * lookupClearcoatAlbedo(woC[2], c.roughness) : 1;
-  return { wo: woC, frame, scale, alpha: c.roughness * c.roughness };
-}
-
-function sheenScaling(m: GltfBsdfMaterial, cosO: number, cosI: number): number {
-  const s = maxComponent(m.sheen!.color);
-  return Math.min(1 - s * lookupSheenAlbedo(cosO, m.sheen!.roughness), 1 - s * lookupSheenAlbedo(Math.abs(cosI), m.sheen!.roughness));
 }
 
 function dielectricSpecularAlbedo(m: GltfBsdfMaterial, cos: number): { value: number; average: number } {
@@ -351,8 +346,8 @@ export function gltfStraightTransmittance(m: GltfBsdfMaterial, wo: Vec3, n = 256
 }
 
 interface Weights {
-  coat: number;
-  sheen: number;
+  /** Per layer of the registry (0 where the material has none). */
+  layers: number[];
   microfacet: number;
   diffuse: number;
   diffuseReflect: number;
@@ -375,26 +370,21 @@ export function gltfLobeWeights(m: GltfBsdfMaterial, wo: Vec3): Weights {
     diffuse = (1 - mt) * (1 - f) * (1 - t) * (dr + dtr);
     diffuseReflect = dr + dtr > 0 ? dr / (dr + dtr) : 1;
   }
-  let coat = 0;
-  let sheen = 0;
-  if (m.clearcoat || m.sheen) {
-    let below = 1;
-    if (m.clearcoat) {
-      const cosC = dot(wo, m.clearcoat.normal ?? [0, 0, 1]);
-      coat = cosC > 0 ? m.clearcoat.factor * fresnelDielectric(cosC, clearcoatIor) : 0;
-      below = 1 - coat;
-    }
-    if (m.sheen) {
-      const s = maxComponent(m.sheen.color) * Math.min(lookupSheenAlbedo(wo[2], m.sheen.roughness), 1);
-      sheen = below * s;
-      below *= 1 - s;
-    }
-    microfacet *= below;
-    diffuse *= below;
-  }
-  const total = coat + sheen + microfacet + diffuse;
-  if (total <= 0) return { coat: 0, sheen: 0, microfacet: 0, diffuse: 1, diffuseReflect: 1 };
-  return { coat: coat / total, sheen: sheen / total, microfacet: microfacet / total, diffuse: diffuse / total, diffuseReflect };
+  // The layers' reflectance estimates, each times what the layers above pass on.
+  let below = 1;
+  const layers = anyLayerReferences.map((reference) => {
+    const params = layerParams(m, reference);
+    if (params === undefined) return 0;
+    const r = reference.reflectance(params, wo);
+    const w = below * r;
+    below *= 1 - r;
+    return w;
+  });
+  microfacet *= below;
+  diffuse *= below;
+  const total = layers.reduce((a, b) => a + b, 0) + microfacet + diffuse;
+  if (total <= 0) return { layers: layers.map(() => 0), microfacet: 0, diffuse: 1, diffuseReflect: 1 };
+  return { layers: layers.map((w) => w / total), microfacet: microfacet / total, diffuse: diffuse / total, diffuseReflect };
 }
 
 /** Probability of reflection among the microfacet lobes given the dielectric F (largest channel, thin film included) at h. */
@@ -487,35 +477,17 @@ export function extendedEval(m: GltfBsdfMaterial, wo: Vec3, wi: Vec3): { f: Vec3
   if (wi[2] < 0 && !m.transmission && !m.diffuseTransmission) return { f: [0, 0, 0], pdf: 0 };
   const w = gltfLobeWeights(m, wo);
   const base = baseEval(m, w, wo, wi);
-  let f = base.f;
+  // The layers over the base, outermost first: f = sum_k (prod_{j<k} s_j) f_k + (prod_j s_j) f_base.
+  let above: Vec3 = [0, 0, 0];
+  let scale = 1;
   let pdf = w.microfacet * base.microfacetPdf + w.diffuse * base.diffusePdf;
-  if (m.clearcoat || m.sheen) {
-    let above: Vec3 = [0, 0, 0];
-    let coatScale = 1;
-    if (m.clearcoat) {
-      const coat = coatOf(m, wo);
-      coatScale = coat.scale;
-      const wiC = toLocal(coat.frame, wi);
-      if (coat.wo[2] > 0 && wiC[2] > 0 && wi[2] > 0 && coat.alpha >= gltfDeltaAlpha) {
-        const h = normalize(add3(coat.wo, wiC));
-        const a = { x: coat.alpha, y: coat.alpha };
-        const spec = (ggxDAniso(h, a) * ggxG2(coat.wo, wiC, a)) / (4 * coat.wo[2] * wiC[2]);
-        const v = m.clearcoat.factor * fresnelDielectric(dot(coat.wo, h), clearcoatIor) * spec;
-        above = [v, v, v];
-        pdf += (w.coat * ggxVisibleNormalPdf(coat.wo, h, a)) / (4 * dot(coat.wo, h));
-      }
-    }
-    let sheenScale = 1;
-    if (m.sheen) {
-      sheenScale = sheenScaling(m, wo[2], wi[2]);
-      if (wi[2] > 0) {
-        const h = normalize(add3(wo, wi));
-        const e = lookupSheenAlbedo(wo[2], m.sheen.roughness);
-        above = add3(above, scale3(m.sheen.color, (coatScale * sheenBrdf(wo[2], wi[2], h[2], m.sheen.roughness)) / Math.max(1, e)));
-        pdf += (w.sheen * wi[2]) / Math.PI;
-      }
-    }
-    f = add3(above, scale3(f, coatScale * Math.max(sheenScale, 0)));
-  }
-  return { f, pdf };
+  anyLayerReferences.forEach((reference, k) => {
+    const params = layerParams(m, reference);
+    if (params === undefined) return;
+    const e = reference.evalPdf(params, wo, wi);
+    above = add3(above, scale3(e.f, scale));
+    pdf += w.layers[k]! * e.pdf;
+    scale *= reference.scale(params, wo, wi);
+  });
+  return { f: add3(above, scale3(base.f, scale)), pdf };
 }

@@ -9,6 +9,7 @@ import { packMaterialTables, type MaterialPlan } from '../../src/pathtracer/scen
 import { anyMaterialExtensions } from '../../src/materials/extensions/index.ts';
 import { linkTestProgram } from '../helpers/wgsl.ts';
 import { BufferUsage } from '../../src/gpu/webgpu-constants.ts';
+import { PACKED_LAYER_VEC4S } from '../../src/gpu-layout/constants.ts';
 import type { GltfBsdfMaterial, Vec3 } from '../../src/materials/index.ts';
 import { packGltfBsdfParams } from '../../src/materials/gltf-bsdf-reference.ts';
 
@@ -47,16 +48,16 @@ export function gltfExtensionLobe(name: string, on: readonly string[]): LobeUnde
 
 /**
  * WESL preamble: the lobe module under the alias `lobe`, a packed test material (TestMaterial = the
- * 32 floats of PackedLobeParams), adapters `bsdf_eval` / `bsdf_pdf` / `bsdf_sample` over the lobe
+ * floats of PackedLobeParams), adapters `bsdf_eval` / `bsdf_pdf` / `bsdf_sample` over the lobe
  * interface (a sample carries its path weight f |cos| / pdf and validity), and a PCG hash RNG.
  */
 export function kernelPreamble(module: string): string {
   return `import ${module} as lobe;
 import package::materials::bsdf::{PackedLobeParams, BSDF_SPECULAR};
 import package::shaders::lib::math::{PI, TWO_PI, max_component};
-struct TestMaterial { a: vec4f, b: vec4f, c: vec4f, d: vec4f, e: vec4f, f: vec4f, g: vec4f, h: vec4f }
+struct TestMaterial { a: vec4f, b: vec4f, c: vec4f, d: vec4f, e: vec4f, f: vec4f, g: vec4f, h: vec4f, layers: array<vec4f, ${PACKED_LAYER_VEC4S}> }
 fn t_material(t: TestMaterial) -> lobe::Params {
-  return lobe::unpack_params(PackedLobeParams(t.a, t.b, t.c, t.d, t.e, t.f, t.g, t.h));
+  return lobe::unpack_params(PackedLobeParams(t.a, t.b, t.c, t.d, t.e, t.f, t.g, t.h, t.layers));
 }
 fn bsdf_eval(m: lobe::Params, wo: vec3f, wi: vec3f) -> vec3f { return lobe::eval_pdf(m, wo, wi).f; }
 fn bsdf_pdf(m: lobe::Params, wo: vec3f, wi: vec3f) -> f32 { return lobe::eval_pdf(m, wo, wi).pdf; }
@@ -77,10 +78,10 @@ fn t_unit(x: u32) -> f32 { return f32(x >> 8u) * (1.0 / 16777216.0); }
 `;
 }
 
-/** Floats per TestMaterial record (PackedLobeParams). */
-export const TEST_MATERIAL_FLOATS = 32;
+/** Floats per TestMaterial record (PackedLobeParams: 32, then the composed BSDF's layers). */
+export const TEST_MATERIAL_FLOATS = 32 + 4 * PACKED_LAYER_VEC4S;
 
-/** Packs parameters as TestMaterial records (32 floats each). */
+/** Packs parameters as TestMaterial records (TEST_MATERIAL_FLOATS each). */
 export function packParams<P>(lobe: LobeUnderTest<P>, params: readonly P[]): Float32Array {
   const out = new Float32Array(params.length * TEST_MATERIAL_FLOATS);
   params.forEach((p, i) => out.set(lobe.pack(p), i * TEST_MATERIAL_FLOATS));

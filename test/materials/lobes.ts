@@ -8,6 +8,7 @@ import { readdirSync } from 'node:fs';
 import { ggxReflection } from '../../src/materials/reference/lobes.ts';
 import type { Alphas } from '../../src/materials/reference/microfacet.ts';
 import { gltfExtensionLobe, gltfLobe, type LobeUnderTest } from './bsdf-harness.ts';
+import { materialLayerReferences } from '../../src/materials/material-layers.generated.ts';
 
 export interface LobeCase<P> {
   lobe: LobeUnderTest<P>;
@@ -175,6 +176,17 @@ function extensionCases(): LobeCase<GltfBsdfMaterial>[] {
         { name: 'iridescent metal', value: { baseColor: [0.8, 0.6, 0.3], metallic: 1, roughness: 0.3, ior: 1.5, iridescence: { factor: 0.9, thickness: 380, ior: 1.3 } } },
         { name: 'iridescent dielectric', value: { baseColor: [0.1, 0.1, 0.1], metallic: 0, roughness: 0.25, ior: 1.6, iridescence: { factor: 1, thickness: 520, ior: 1.8 } } },
       ],
+      reference,
+      reciprocal: false,
+      energyConserving: false,
+    },
+    // Every layer of the registry over a rough dielectric base, with the examples its reference
+    // gives: a new layer is tested against its reference without a case of its own.
+    {
+      lobe: gltfExtensionLobe('glTF under each registry layer', materialLayerReferences.map((r) => r.feature)),
+      params: materialLayerReferences.flatMap((r) =>
+        r.examples.map((example) => ({ name: `${r.key}: ${example.name}`, value: { baseColor: [0.6, 0.5, 0.4], metallic: 0, roughness: 0.5, ior: 1.5, [r.key]: example.value } as GltfBsdfMaterial })),
+      ),
       reference,
       reciprocal: false,
       energyConserving: false,

@@ -112,6 +112,14 @@ export interface MaterialExtensionSpec<Block = never> {
   readonly tables?: readonly MaterialTableName[];
   /** Whether the raster renderer draws it (as the Khronos sample viewer does) or refuses it. */
   readonly raster: 'drawn' | 'refused';
+  /**
+   * A layer over the base BSDF (as clearcoat and sheen are): its physics is `<folder>/layer.wesl`
+   * (the material-layer interface) and `<folder>/reference.ts`'s `layerReference`. Layers stack in
+   * registry order, outermost first; the composed BSDF's layering, the material stage's reads, the
+   * surface record's words and the CPU reference's stack are generated from the entries
+   * (scripts/shader-build/material-layers.ts).
+   */
+  readonly layer?: { readonly folder: string };
 }
 
 /** The data part of an extension (what its literal types are inferred from). */

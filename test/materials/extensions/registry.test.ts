@@ -12,8 +12,9 @@ import {
   MATERIAL_FLAG_IOR_INFINITE,
   gpuConstants,
 } from '../../../src/gpu-layout/constants.ts';
-import { heapRecordLayouts, materialCoreLayout } from '../../../src/gpu-layout/records.ts';
+import { heapRecordLayouts, materialCoreLayout, surfaceRecordLayout } from '../../../src/gpu-layout/records.ts';
 import { anyMaterialExtensions, type FactorSpec, type MaterialExtensionSpec } from '../../../src/materials/extensions/index.ts';
+import { materialLayerReferences } from '../../../src/materials/material-layers.generated.ts';
 import { planMaterials } from '../../../src/pathtracer/scene/pack-materials.ts';
 import { materialFeatures } from '../../../src/pathtracer/scene/material-features.ts';
 import { normalizeRasterMaterial } from '../../../src/raster/scene/raster-material.ts';
@@ -109,4 +110,22 @@ test('scene files accept every registry key, the plan turns on each extension\'s
     if (e.raster === 'drawn') assert.doesNotThrow(draw, e.name);
     else assert.throws(draw, (err: unknown) => err instanceof GpuRendererError && err.field === `materials[2].${e.enabledBy}`, e.name);
   }
+});
+
+test('layers: every registry entry with a layer has its CPU reference in the composed stack, in registry order, with its flag, feature and surface-record words', () => {
+  const layered = extensions.filter((e) => e.layer !== undefined);
+  assert.ok(layered.length > 0);
+  assert.deepEqual(
+    materialLayerReferences.map((r) => r.key),
+    layered.map((e) => e.key),
+  );
+  for (const [k, e] of layered.entries()) {
+    const reference = materialLayerReferences[k]!;
+    assert.equal(reference.flag, gpuConstants[e.flag.name], `${e.name}: the reference's flag`);
+    assert.equal(reference.feature, e.feature.name, `${e.name}: the reference's feature`);
+    assert.ok(surfaceRecordLayout.fields.some((f) => f.name === `${e.key}Layer`), `${e.name}: its SurfaceRecord words`);
+    assert.ok(reference.examples.length > 0, `${e.name}: examples for the composed-BSDF harness`);
+    for (const example of reference.examples) assert.ok(reference.pack(example.value as never).length <= 8, `${e.name}: packs into its two vec4s`);
+  }
+  assert.equal(gpuConstants.PACKED_LAYER_VEC4S, 2 * layered.length);
 });

@@ -1,4 +1,4 @@
-/** KHR_materials_clearcoat: a dielectric GGX coat (ior 1.5) over the material. */
+/** KHR_materials_clearcoat: a dielectric GGX coat (ior 1.5) over the material (physics: layer.wesl, reference.ts). */
 import { defineStructLayout } from '../../../gpu-layout/struct-layout.ts';
 import { defineMaterialExtension } from '../material-extension.ts';
 
@@ -31,6 +31,7 @@ export const clearcoat = defineMaterialExtension({
   compensable: true,
   tables: ['clearcoat'],
   raster: 'drawn',
+  layer: { folder: 'clearcoat' },
 }, {
   present: (b) => b.factor > 0,
   block: {

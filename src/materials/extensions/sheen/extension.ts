@@ -1,4 +1,4 @@
-/** KHR_materials_sheen: a Charlie sheen layer over the base (physics: sheen-charlie.wesl, reference.ts). */
+/** KHR_materials_sheen: a Charlie sheen layer over the base (physics: layer.wesl, sheen-charlie.wesl, reference.ts). */
 import { defineStructLayout } from '../../../gpu-layout/struct-layout.ts';
 import { defineMaterialExtension } from '../material-extension.ts';
 
@@ -28,6 +28,7 @@ export const sheen = defineMaterialExtension({
   compensable: true,
   tables: ['sheen'],
   raster: 'drawn',
+  layer: { folder: 'sheen' },
 }, {
   present: (b) => b.colorFactor.some((c) => c > 0),
   block: {

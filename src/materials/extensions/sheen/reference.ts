@@ -4,8 +4,11 @@
  * Microfacet Sheen BRDF", in the forms of the KHR_materials_sheen implementation notes, with the
  * Khronos sample viewer's alpha = sheenRoughness^2.
  */
+import { lookupSheenAlbedo } from '../../energy/table-lookup.ts';
+import { defineLayerReference } from '../../material-layer.ts';
 import { none, type LobeValue } from '../../reference/lobes.ts';
-import { normalize, type Vec3 } from '../../reference/vector.ts';
+import { add, maxComponent, normalize, scale, type Vec3 } from '../../reference/vector.ts';
+import { sheen } from './extension.ts';
 
 /** Sheen roughness below this is raised to it: the distribution's exponent 1 / alpha stays finite. */
 export const sheenMinRoughness = 0.01;
@@ -52,3 +55,28 @@ export function sheenCharlie(sheenRoughness: number, wo: Vec3, wi: Vec3): LobeVa
   const h = normalize([wo[0] + wi[0], wo[1] + wi[1], wo[2] + wi[2]]);
   return { f: sheenBrdf(wo[2], wi[2], h[2], sheenRoughness), pdf: wi[2] / Math.PI };
 }
+
+export interface SheenLayerParams {
+  color: Vec3;
+  roughness: number;
+}
+
+/**
+ * The sheen layer (layer.wesl): the Charlie lobe times the sheen colour, divided by max(1, E(wo)),
+ * over the layers below scaled by min(1 - max(color) E(wo), 1 - max(color) E(wi)).
+ */
+export const layerReference = defineLayerReference(sheen, {
+  reflectance: (p: SheenLayerParams, wo: Vec3) => maxComponent(p.color) * Math.min(lookupSheenAlbedo(wo[2], p.roughness), 1),
+  scale: (p: SheenLayerParams, wo: Vec3, wi: Vec3) => {
+    const s = maxComponent(p.color);
+    return Math.max(0, Math.min(1 - s * lookupSheenAlbedo(wo[2], p.roughness), 1 - s * lookupSheenAlbedo(Math.abs(wi[2]), p.roughness)));
+  },
+  evalPdf: (p: SheenLayerParams, wo: Vec3, wi: Vec3) => {
+    if (wi[2] <= 0) return { f: [0, 0, 0], pdf: 0 };
+    const h = normalize(add(wo, wi));
+    const e = lookupSheenAlbedo(wo[2], p.roughness);
+    return { f: scale(p.color, sheenBrdf(wo[2], wi[2], h[2], p.roughness) / Math.max(1, e)), pdf: wi[2] / Math.PI };
+  },
+  pack: (p: SheenLayerParams) => [...p.color, p.roughness, 0, 0, 0, 0],
+  examples: [{ name: 'velvet sheen', value: { color: [0.9, 0.4, 0.6], roughness: 0.5 } }],
+});
