@@ -134,7 +134,7 @@ function triangleSet(indices: ArrayLike<number>): string[] {
 }
 
 /** The rigged figure with its body primitive's indices replaced (mode and index list). */
-function figureWithBody(mode: number, indices: number[], restart = true): ReturnType<typeof createRiggedFigure>['document'] {
+function figureWithBody(mode: ReturnType<Primitive['getMode']>, indices: number[], restart = true): ReturnType<typeof createRiggedFigure>['document'] {
   const { document } = createRiggedFigure();
   if (restart) document.createExtension(KHRMeshPrimitiveRestart);
   const body = document.getRoot().listMeshes().find((m) => m.getName() === 'Body')!.listPrimitives()[0];
