@@ -1,10 +1,10 @@
 /**
  * glTF accessor data as typed arrays: the one decoding of accessor elements, shared by the glTF
- * scene reader (src/io/gltf) and the animation model reader (src/animation/model). Normalised
- * integers decode with the glTF 2.0 formulas (section 3.11, "Animations", and
- * KHR_mesh_quantization: f = max(c / (2^(n-1) - 1), -1) for signed, f = c / (2^n - 1) for
- * unsigned); non-normalised integers (quantised positions, whose scale lives in the node
- * transform) convert as they are. Sparse accessors arrive already applied by the reader.
+ * primitive reader (src/io/gltf/primitive), the scene loader (src/io/gltf) and src/animation's
+ * skin and keyframe readers. Normalised integers decode with the glTF 2.0 formulas (section 3.11,
+ * "Animations", and KHR_mesh_quantization: f = max(c / (2^(n-1) - 1), -1) for signed,
+ * f = c / (2^n - 1) for unsigned); non-normalised integers (quantised positions, whose scale lives
+ * in the node transform) convert as they are. Sparse accessors arrive already applied by the reader.
  */
 import type { Accessor } from '@gltf-transform/core';
 import type { GpuRendererErrorCode } from '../errors/gpu-renderer-error.ts';
@@ -77,21 +77,5 @@ export function readFloatAccessor(accessor: Accessor, field: string, code: GpuRe
   const out = decodeInto(accessor, new Float64Array(source.length)).subarray(0, count * size);
   const bad = firstNonFinite(out);
   if (bad >= 0) fail(code, `${field}[${Math.floor(bad / size)}]`, `element ${Math.floor(bad / size)} component ${bad % size} is not finite (${out[bad]})`);
-  return out;
-}
-
-/** Reads an integer accessor (indices, JOINTS_n) as unsigned integers. */
-export function readIndexAccessor(accessor: Accessor, field: string, code: GpuRendererErrorCode, allowedTypes: readonly string[]): Uint32Array {
-  const type = accessor.getType();
-  if (!allowedTypes.includes(type)) fail(code, field, `expected an accessor of type ${allowedTypes.join(' or ')}, got ${type}`);
-  if (accessor.getNormalized()) fail(code, field, 'expected integer values, got a normalized accessor');
-  const array = accessor.getArray();
-  if (array === null) fail(code, field, 'accessor has no data');
-  const out = new Uint32Array(array.length);
-  for (let i = 0; i < array.length; i++) {
-    const v = array[i];
-    if (!Number.isInteger(v) || v < 0) fail(code, `${field}[${Math.floor(i / elementSize(type))}]`, `expected a non-negative integer, got ${v}`);
-    out[i] = v;
-  }
   return out;
 }

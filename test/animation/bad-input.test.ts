@@ -63,7 +63,7 @@ test('weights channels must target a node with as many morph targets as outputs 
   }
 });
 
-test('model errors: skin weights, joint indices, missing joints, primitive mode, inverse bind matrices', () => {
+test('model errors: skin weights, joint indices, missing joints, primitive mode, incomplete or out-of-range indices, inverse bind matrices', () => {
   const primitiveOf = (d: Document): ReturnType<ReturnType<Document['createPrimitive']>['setMode']> => d.getRoot().listMeshes()[bodyMeshIndex(d)].listPrimitives()[0];
   const at = (d: Document, suffix: string): string => `modelAsset.meshes[${bodyMeshIndex(d)}].primitives[0]${suffix}`;
   const cases: [(d: Document) => void, (d: Document) => string][] = [
@@ -74,6 +74,8 @@ test('model errors: skin weights, joint indices, missing joints, primitive mode,
     [(d) => { primitiveOf(d).setAttribute('JOINTS_0', null).setAttribute('WEIGHTS_0', null); }, (d) => at(d, '.attributes.JOINTS_0')],
     [(d) => primitiveOf(d).setMode(1), (d) => at(d, '.mode')],
     [(d) => primitiveOf(d).getAttribute('NORMAL')!.setArray(new Float32Array(9)), (d) => at(d, '.attributes.NORMAL')],
+    [(d) => { const i = primitiveOf(d).getIndices()!; i.setArray(i.getArray()!.slice(0, -1)); }, (d) => at(d, '.indices')],
+    [(d) => { const i = primitiveOf(d).getIndices()!; const a = i.getArray()!.slice(); a[4] = 999; i.setArray(a); }, (d) => at(d, '.indices')],
     [(d) => d.getRoot().listSkins()[0].getInverseBindMatrices()!.setArray(new Float32Array(16 * 2)), () => 'modelAsset.skins[0].inverseBindMatrices'],
   ];
   for (const [mutate, field] of cases) {

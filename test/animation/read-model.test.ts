@@ -1,10 +1,12 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { NodeIO } from '@gltf-transform/core';
+import { NodeIO, Primitive } from '@gltf-transform/core';
+import { KHRMeshPrimitiveRestart } from '@gltf-transform/extensions';
 import { mat4d } from 'wgpu-matrix';
 import { readAnimatedModel } from '../../src/animation/model/read-model.ts';
+import { modelRasterParts } from '../../src/raster/animated/model-meshes.ts';
 import { createRiggedFigure, JOINT_NAMES, LEVEL_HEIGHTS, figureInfluences } from './fixtures/rigged-figure.ts';
-import { assertClose } from './helpers.ts';
+import { assertClose, expectRendererError } from './helpers.ts';
 
 test('reads the node hierarchy with rest transforms, parents before children', () => {
   const { document } = createRiggedFigure();
@@ -113,4 +115,75 @@ test('only mesh nodes of the default scene are drawn', () => {
   const model = readAnimatedModel(document);
   assert.ok(model.nodes.some((n) => n.name === 'Ghost'));
   assert.deepEqual(model.drawables.map((d) => model.nodes[d.node].name).sort(), ['Badge', 'Body']);
+});
+
+/** The figure body's vertex of face `f`, level `l`, side a (0) or b (1), as the fixture lays them out. */
+const bodyVertex = (f: number, l: number, side: 0 | 1): number => f * LEVEL_HEIGHTS.length * 2 + 2 * l + side;
+const FACE_COUNT = 4;
+const RESTART = 0xffff;
+
+/** Each triangle rotated to start at its smallest index (winding kept), sorted: the set of triangles drawn. */
+function triangleSet(indices: ArrayLike<number>): string[] {
+  const out: string[] = [];
+  for (let t = 0; t < indices.length; t += 3) {
+    const tri = [indices[t], indices[t + 1], indices[t + 2]];
+    const first = tri.indexOf(Math.min(...tri));
+    out.push([0, 1, 2].map((k) => tri[(first + k) % 3]).join(','));
+  }
+  return out.sort();
+}
+
+/** The rigged figure with its body primitive's indices replaced (mode and index list). */
+function figureWithBody(mode: ReturnType<Primitive['getMode']>, indices: number[], restart = true): ReturnType<typeof createRiggedFigure>['document'] {
+  const { document } = createRiggedFigure();
+  if (restart) document.createExtension(KHRMeshPrimitiveRestart);
+  const body = document.getRoot().listMeshes().find((m) => m.getName() === 'Body')!.listPrimitives()[0];
+  body.setMode(mode).getIndices()!.setArray(new Uint16Array(indices));
+  return document;
+}
+
+test('TRIANGLE_STRIP and TRIANGLE_FAN primitives with primitive restart read as the triangles of their triangle lists, and reach the raster meshes so', () => {
+  const bodyOf = (model: ReturnType<typeof readAnimatedModel>) => model.meshes[model.nodes.find((n) => n.name === 'Body')!.mesh].primitives[0];
+  const levels = LEVEL_HEIGHTS.length;
+  // One strip up each face, zig-zagging a, b, a, b...: glTF 3.7.2.1 gives band l the triangles
+  // (a_l, b_l, a_l+1) and (b_l, b_l+1, a_l+1), written out here as the list equivalent.
+  const strip: number[] = [];
+  const stripList: number[] = [];
+  for (let f = 0; f < FACE_COUNT; f++) {
+    if (f > 0) strip.push(RESTART);
+    for (let l = 0; l < levels; l++) strip.push(bodyVertex(f, l, 0), bodyVertex(f, l, 1));
+    for (let l = 0; l + 1 < levels; l++) stripList.push(bodyVertex(f, l, 0), bodyVertex(f, l, 1), bodyVertex(f, l + 1, 0), bodyVertex(f, l, 1), bodyVertex(f, l + 1, 1), bodyVertex(f, l + 1, 0));
+  }
+  const fromStrip = readAnimatedModel(figureWithBody(Primitive.Mode.TRIANGLE_STRIP, strip));
+  const fromList = readAnimatedModel(figureWithBody(Primitive.Mode.TRIANGLES, stripList, false));
+  assert.deepEqual(triangleSet(bodyOf(fromStrip).indices), triangleSet(stripList));
+  assert.deepEqual(triangleSet(bodyOf(fromList).indices), triangleSet(stripList));
+  // Every strip triangle faces out of the body, as the face's NORMAL does (counter-clockwise kept).
+  const body = bodyOf(fromStrip);
+  const p = (i: number): number[] => [0, 1, 2].map((k) => body.positions[3 * i + k]);
+  for (let t = 0; t < body.indices.length; t += 3) {
+    const [a, b, c] = [p(body.indices[t]), p(body.indices[t + 1]), p(body.indices[t + 2])];
+    const e1 = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
+    const e2 = [c[0] - a[0], c[1] - a[1], c[2] - a[2]];
+    const n = [e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]];
+    const normal = [0, 1, 2].map((k) => body.normals![3 * body.indices[t] + k]);
+    assert.ok(n[0] * normal[0] + n[1] * normal[1] + n[2] * normal[2] > 0, `strip triangle ${t / 3} faces outward`);
+  }
+
+  // One fan per quad, around a_l: b_l, b_l+1, a_l+1 gives the fixture's own triangle list.
+  const fan: number[] = [];
+  for (let f = 0; f < FACE_COUNT; f++) {
+    for (let l = 0; l + 1 < levels; l++) fan.push(bodyVertex(f, l, 0), bodyVertex(f, l, 1), bodyVertex(f, l + 1, 1), bodyVertex(f, l + 1, 0), RESTART);
+  }
+  const original = readAnimatedModel(createRiggedFigure().document);
+  const fromFan = readAnimatedModel(figureWithBody(Primitive.Mode.TRIANGLE_FAN, fan));
+  assert.deepEqual(triangleSet(bodyOf(fromFan).indices), triangleSet(bodyOf(original).indices));
+
+  // What the raster renderer uploads: the strip figure's skinned body mesh carries the list's triangles.
+  const parts = modelRasterParts(fromStrip, (m) => (m >= 0 ? m : undefined));
+  const drawn = parts.parts.find((part) => part.kind === 'skinned' && fromStrip.drawables[part.drawable].node === fromStrip.nodes.findIndex((n) => n.name === 'Body'))!;
+  assert.deepEqual(triangleSet(parts.skinnedMeshes[drawn.index].indices!), triangleSet(stripList));
+
+  // Without KHR_mesh_primitive_restart in use, 0xffff is an index out of range, refused by name.
+  expectRendererError(() => readAnimatedModel(figureWithBody(Primitive.Mode.TRIANGLE_STRIP, strip, false), { field: 'modelAsset' }), 'INVALID_MODEL', `modelAsset.meshes[${fromStrip.nodes.find((n) => n.name === 'Body')!.mesh}].primitives[0].indices`, /index 12 is 65535/);
 });

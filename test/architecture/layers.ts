@@ -12,8 +12,10 @@ export const layers: readonly (readonly string[])[] = [
   // Numeric helpers with no dependencies: matrices, half floats, colour transfer functions.
   ['math', 'color'],
   // Files, URLs and the platform: reading a path or URL within the resource policy's bounds, data
-  // URIs, image headers, codecs. Everything that reads bytes goes through here.
-  ['io'],
+  // URIs, image headers, codecs. Everything that reads bytes goes through here. The glTF primitive
+  // reader sits here too (accessor data to vertex streams, triangles, influences, morph targets),
+  // below both of its callers: the glTF scene loader and the animated-model reader.
+  ['io', 'io/gltf/primitive'],
   // The WebGPU device and its constants (Dawn is found through the platform layer).
   ['gpu'],
   // Struct layouts (the std430 rules) and the types a material uses to name textures: what the

@@ -5,6 +5,7 @@
  * (`root.listNodes()`, `listSkins()`, `listMeshes()`, `listMaterials()`), so they match the indices
  * a glTF loader assigns and the `field` paths in errors.
  */
+import type { GltfMorphTarget, GltfPrimitive } from '../../io/gltf/primitive/read-primitive.ts';
 import type { AnimationClip } from '../clips/clip-types.ts';
 
 export type Vec3 = [number, number, number];
@@ -39,33 +40,13 @@ export interface ModelSkin {
 }
 
 /** Morph target deltas (glTF 2.0 section 3.7.2.2); tangent deltas are xyz only. */
-export interface ModelMorphTarget {
-  readonly positions: Float32Array | null;
-  readonly normals: Float32Array | null;
-  readonly tangents: Float32Array | null;
-}
+export type ModelMorphTarget = GltfMorphTarget;
 
-export interface ModelPrimitive {
-  readonly vertexCount: number;
-  /** xyz per vertex. */
-  readonly positions: Float32Array;
-  readonly normals: Float32Array | null;
-  /** xyzw per vertex (w = bitangent sign). */
-  readonly tangents: Float32Array | null;
-  readonly uvs: Float32Array | null;
-  readonly uvs1: Float32Array | null;
-  /** COLOR_0 as floats, `colorComponents` (3 or 4) per vertex. */
-  readonly colors: Float32Array | null;
-  readonly colorComponents: 0 | 3 | 4;
-  /** Triangle list; null means consecutive triples. */
-  readonly indices: Uint32Array | null;
-  /** Joint influences per vertex: 0 (not skinned), 4 (JOINTS_0) or 8 (JOINTS_0 + JOINTS_1). */
-  readonly influences: 0 | 4 | 8;
-  /** `influences` joint indices per vertex, into the skin's `joints`. */
-  readonly joints: Uint16Array | null;
-  /** `influences` weights per vertex, normalised to sum 1 (glTF 2.0 section 3.7.3.3). */
-  readonly weights: Float32Array | null;
-  readonly targets: readonly ModelMorphTarget[];
+/**
+ * A primitive's vertex streams, triangle list (strips and fans converted), skin influences and
+ * morph targets, as the one glTF primitive reader reads them, with its material.
+ */
+export interface ModelPrimitive extends GltfPrimitive {
   /** glTF material index or -1. */
   readonly material: number;
 }

@@ -1,24 +1,46 @@
 import type { Document, Material, Node } from '@gltf-transform/core';
 import { fail } from '../../errors/validate.ts';
+import type { PrimitiveFault } from '../../io/gltf/primitive/primitive-fault.ts';
+import { readGltfPrimitive, usesPrimitiveRestart } from '../../io/gltf/primitive/read-primitive.ts';
+import { checkSkinInfluences } from '../../io/gltf/primitive/skin-influences.ts';
 import { readAnimationClips } from '../clips/read-clips.ts';
 import { checkClipTargets } from '../clips/bind-clips.ts';
 import { readNodeHierarchy, readNodeRest } from './read-node-hierarchy.ts';
-import { readPrimitive } from './read-primitive.ts';
 import { readSkins } from './read-skins.ts';
-import { checkJointRange } from './skin-influences.ts';
-import type { AnimatedModel, ModelDrawable, ModelMaterialSummary, ModelMesh, ModelNode } from './model-types.ts';
+import type { AnimatedModel, ModelDrawable, ModelMaterialSummary, ModelMesh, ModelNode, ModelPrimitive } from './model-types.ts';
 
 export interface ReadAnimatedModelOptions {
   /** Prefix of error fields, e.g. `modelAsset` (errors then read `modelAsset.skins[0].joints`). */
   field?: string;
 }
 
-function readMeshes(document: Document, field: string): ModelMesh[] {
+/**
+ * The primitive reader's faults as this reader's errors: INVALID_MODEL, the JSON pointer as a
+ * dotted field after the prefix (`/meshes/0/primitives/1/attributes/WEIGHTS_0/12` ->
+ * `modelAsset.meshes[0].primitives[1].attributes.WEIGHTS_0[12]`).
+ */
+function modelFault(prefix: string): PrimitiveFault {
+  return (pointer, message) => {
+    const segments = pointer.split('/').slice(1).map((s) => s.replaceAll('~1', '/').replaceAll('~0', '~'));
+    const field = segments.reduce((out, s) => (/^\d+$/.test(s) ? `${out}[${s}]` : out === '' ? s : `${out}.${s}`), '');
+    return fail('INVALID_MODEL', `${prefix}${field}`, message);
+  };
+}
+
+function readMeshes(document: Document, prefix: string): ModelMesh[] {
   const materialIndexOf = new Map<Material, number>();
   document.getRoot().listMaterials().forEach((material, i) => materialIndexOf.set(material, i));
+  const fault = modelFault(prefix);
+  const primitiveRestart = usesPrimitiveRestart(document);
   return document.getRoot().listMeshes().map((mesh, m) => {
-    const meshField = `${field}meshes[${m}]`;
-    const primitives = mesh.listPrimitives().map((primitive, p) => readPrimitive(primitive, `${meshField}.primitives[${p}]`, materialIndexOf));
+    const meshField = `${prefix}meshes[${m}]`;
+    const primitives = mesh.listPrimitives().map((primitive, p): ModelPrimitive => {
+      // Influences are read for every primitive: which skin draws it is known per node (checkSkinnedMesh).
+      const read = readGltfPrimitive(primitive, { at: `/meshes/${m}/primitives/${p}`, fault, primitiveRestart, influences: true });
+      if ('skip' in read) return fault(read.at, read.skip);
+      const material = primitive.getMaterial();
+      return { ...read, material: material === null ? -1 : (materialIndexOf.get(material) ?? -1) };
+    });
     if (primitives.length === 0) fail('INVALID_MODEL', `${meshField}.primitives`, 'mesh has no primitives');
     const targetCount = primitives[0].targets.length;
     primitives.forEach((primitive, p) => {
@@ -48,7 +70,8 @@ function summariseMaterials(document: Document): ModelMaterialSummary[] {
 
 /**
  * Reads the animation-relevant content of a glTF document: node hierarchy with rest TRS, skins,
- * meshes (vertex streams, skin influences, morph targets), drawable nodes, a material summary and
+ * meshes (vertex streams, skin influences, morph targets, read by the one glTF primitive reader, so
+ * strips, fans and primitive restart arrive as triangle lists), drawable nodes, a material summary and
  * the document's own animations, validating all of it. Errors are `INVALID_MODEL` or
  * `INVALID_ANIMATION` with a `field` that follows the glTF JSON (`meshes[0].primitives[1].attributes.WEIGHTS_0[12]`).
  */
@@ -109,9 +132,6 @@ function sceneNodes(document: Document): Set<Node> | null {
 
 /** A skinned mesh's primitives must all carry joints, and every joint index must name a skin joint. */
 function checkSkinnedMesh(mesh: ModelMesh, meshIndex: number, jointCount: number, prefix: string): void {
-  mesh.primitives.forEach((primitive, p) => {
-    const field = `${prefix}meshes[${meshIndex}].primitives[${p}]`;
-    if (primitive.joints === null) fail('INVALID_MODEL', `${field}.attributes.JOINTS_0`, 'a skinned mesh needs JOINTS_0 and WEIGHTS_0');
-    checkJointRange(primitive, field, jointCount);
-  });
+  const fault = modelFault(prefix);
+  mesh.primitives.forEach((primitive, p) => checkSkinInfluences(primitive, `/meshes/${meshIndex}/primitives/${p}`, jointCount, fault));
 }

@@ -81,8 +81,8 @@ export function bakePose(model: AnimatedModel, clipState: ClipState, tMs: number
       const out: WavefrontMeshInput = {
         id: `node${drawable.node}.mesh${drawable.mesh}.primitive${p}`,
         positions: Float32Array.from(streams.positions),
+        indices: primitive.indices,
       };
-      if (primitive.indices !== null) out.indices = primitive.indices;
       if (streams.normals !== null) out.normals = Float32Array.from(streams.normals);
       if (streams.tangents !== null) out.tangents = Float32Array.from(streams.tangents);
       if (primitive.uvs !== null) out.uvs = primitive.uvs;

@@ -1,21 +1,18 @@
 /**
- * One glTF primitive -> triangle-list vertex streams, validated: non-finite vertex data and indices
- * beyond the vertex count are typed errors naming the attribute or indices pointer. Morph targets
- * are applied with the given weights (glTF 2.0 section 3.7.2.2: base + sum of weight * target), then
- * the node's skin when it has one (section 3.7.3), by src/animation's reference code.
+ * One glTF primitive -> posed triangle-list vertex streams for the path tracer. The primitive is
+ * read and validated by the one primitive reader (./primitive/read-primitive.ts, errors INVALID_GLTF
+ * with JSON pointers); morph targets are then applied with the given weights (glTF 2.0 section
+ * 3.7.2.2: base + sum of weight * target), then the node's skin when it has one (section 3.7.3), by
+ * src/animation's reference code, the arithmetic the raster renderer poses with.
  */
-import type { Accessor, Primitive } from '@gltf-transform/core';
-import type { ModelMorphTarget } from '../../animation/model/model-types.ts';
-import { checkJointRange, readSkinInfluences, type SkinInfluences } from '../../animation/model/skin-influences.ts';
+import type { Primitive } from '@gltf-transform/core';
 import { applyMorphTargets } from '../../animation/skinning/morph-targets.ts';
 import { skinVertices } from '../../animation/skinning/skin-vertices.ts';
-import { accessorToFloat32, accessorToUint32, firstNonFinite } from '../accessors.ts';
+import { firstNonFinite } from '../accessors.ts';
 import { failGltf } from './errors.ts';
-import { withGltfPointers } from './posing.ts';
-import { MODE_NAMES, MODE_TRIANGLES, MODE_TRIANGLE_FAN, MODE_TRIANGLE_STRIP, sequentialIndices, toTriangleList } from './topology.ts';
+import { readGltfPrimitive, type GltfPrimitive } from './primitive/read-primitive.ts';
+import { checkSkinInfluences } from './primitive/skin-influences.ts';
 import type { VertexStreams } from './vertex-streams.ts';
-
-const RESTART_VALUES: Readonly<Record<number, number>> = { 5121: 0xff, 5123: 0xffff, 5125: 0xffffffff };
 
 export interface PrimitiveGeometryOptions {
   /** JSON pointer of the primitive (`/meshes/2/primitives/0`). */
@@ -34,55 +31,6 @@ export interface PrimitiveGeometryOptions {
   skin?: { jointMatrices: Float64Array; jointCount: number };
 }
 
-/** Components per element of the attributes the renderer reads (glTF 2.0 section 3.7.2.1). */
-const ATTRIBUTE_SIZES: Readonly<Record<string, readonly number[]>> = { POSITION: [3], NORMAL: [3], TANGENT: [4], TEXCOORD_0: [2], TEXCOORD_1: [2], COLOR_0: [3, 4] };
-
-/**
- * The attribute as float32, checked: its element size (a Document passed in has not been through
- * the JSON validation), its count against the primitive's vertex count, and finite components.
- */
-function floatAttribute(primitive: Primitive, semantic: string, at: string, vertexCount: number): Float32Array | undefined {
-  const accessor = primitive.getAttribute(semantic);
-  if (accessor === null) return undefined;
-  const sizes = ATTRIBUTE_SIZES[semantic]!;
-  if (!sizes.includes(accessor.getElementSize())) failGltf(`${at}/attributes/${semantic}`, `${semantic} must have ${sizes.join(' or ')} components per element, the accessor has ${accessor.getElementSize()}`);
-  if (accessor.getCount() !== vertexCount) failGltf(`${at}/attributes/${semantic}`, `${accessor.getCount()} elements, the primitive's POSITION has ${vertexCount}`);
-  const values = accessorToFloat32(accessor);
-  const bad = firstNonFinite(values);
-  if (bad >= 0) failGltf(`${at}/attributes/${semantic}`, `element ${Math.floor(bad / accessor.getElementSize())} has a non-finite component (${values[bad]})`);
-  return values;
-}
-
-/** Morph target deltas of the targets with a non-zero weight (the others are never read). */
-function morphTargets(primitive: Primitive, vertexCount: number, options: PrimitiveGeometryOptions): ModelMorphTarget[] {
-  return primitive.listTargets().map((target, t) => {
-    const read = (semantic: string): Float32Array | null => {
-      const accessor: Accessor | null = target.getAttribute(semantic);
-      if ((options.weights[t] ?? 0) === 0 || accessor === null) return null;
-      const at = `${options.at}/targets/${t}/${semantic}`;
-      if (accessor.getElementSize() !== 3) failGltf(at, `morph target ${semantic} deltas must have 3 components per element, the accessor has ${accessor.getElementSize()}`);
-      if (accessor.getCount() !== vertexCount) failGltf(at, `${accessor.getCount()} elements, the primitive has ${vertexCount} vertices`);
-      const delta = accessorToFloat32(accessor);
-      const bad = firstNonFinite(delta);
-      if (bad >= 0) failGltf(at, `element ${Math.floor(bad / 3)} has a non-finite component`);
-      return delta;
-    };
-    return { positions: read('POSITION'), normals: read('NORMAL'), tangents: read('TANGENT') };
-  });
-}
-
-/** The primitive's joint influences for skinning, checked against the skin's joint count. */
-function jointInfluences(primitive: Primitive, at: string, vertexCount: number, jointCount: number): SkinInfluences {
-  // src/animation names fields with dots (`meshes.0.primitives.1.attributes.JOINTS_0[5]`), made pointers again on error.
-  const dotted = at.slice(1).replaceAll('/', '.');
-  return withGltfPointers(() => {
-    const influences = readSkinInfluences(primitive, dotted, vertexCount);
-    if (influences.influences === 0) failGltf(`${at}/attributes/JOINTS_0`, 'the mesh is drawn by a node with a skin; a skinned mesh needs JOINTS_0 and WEIGHTS_0');
-    checkJointRange(influences, dotted, jointCount);
-    return influences;
-  });
-}
-
 function normalized(values: Float64Array | null, size: number): Float32Array | undefined {
   if (values === null) return undefined;
   const out = Float32Array.from(values);
@@ -97,11 +45,9 @@ function normalized(values: Float64Array | null, size: number): Float32Array | u
  * Morph targets, then (with a skin) linear blend skinning, by src/animation's reference code (the
  * arithmetic the raster renderer's skinning shader mirrors). Normals and tangents come out unit length.
  */
-function deform(primitive: Primitive, base: { positions: Float32Array; normals?: Float32Array; tangents?: Float32Array }, options: PrimitiveGeometryOptions): { positions: Float32Array; normals?: Float32Array; tangents?: Float32Array } {
-  const vertexCount = base.positions.length / 3;
-  const source = { vertexCount, positions: base.positions, normals: base.normals ?? null, tangents: base.tangents ?? null, targets: morphTargets(primitive, vertexCount, options) };
-  const morphed = applyMorphTargets(source, options.weights);
-  const streams = options.skin === undefined ? morphed : skinVertices({ vertexCount, ...jointInfluences(primitive, options.at, vertexCount, options.skin.jointCount) }, morphed, options.skin.jointMatrices);
+function deform(read: GltfPrimitive, options: PrimitiveGeometryOptions): { positions: Float32Array; normals?: Float32Array; tangents?: Float32Array } {
+  const morphed = applyMorphTargets(read, options.weights);
+  const streams = options.skin === undefined ? morphed : skinVertices(read, morphed, options.skin.jointMatrices);
   const positions = Float32Array.from(streams.positions);
   const bad = firstNonFinite(positions);
   if (bad >= 0) failGltf(options.skin === undefined ? `${options.at}/targets` : `${options.at}/attributes/JOINTS_0`, `${options.skin === undefined ? 'morphed' : 'skinned'} POSITION element ${Math.floor(bad / 3)} is not finite`);
@@ -118,43 +64,27 @@ function deform(primitive: Primitive, base: { positions: Float32Array; normals?:
  * and skips it).
  */
 export function primitiveGeometry(primitive: Primitive, options: PrimitiveGeometryOptions): VertexStreams | { skip: string } {
-  const { at } = options;
-  const mode = primitive.getMode();
-  if (mode !== MODE_TRIANGLES && mode !== MODE_TRIANGLE_STRIP && mode !== MODE_TRIANGLE_FAN) {
-    return { skip: `${MODE_NAMES[mode] ?? `mode ${mode}`} primitives are not rendered (the path tracer draws surfaces only)` };
-  }
-  const positionAccessor = primitive.getAttribute('POSITION');
-  if (positionAccessor === null) return { skip: 'the primitive has no POSITION attribute' };
-  const vertexCount = positionAccessor.getCount();
-  let positions = floatAttribute(primitive, 'POSITION', at, vertexCount) as Float32Array;
-  let normals = floatAttribute(primitive, 'NORMAL', at, vertexCount);
-  let tangents = floatAttribute(primitive, 'TANGENT', at, vertexCount);
-  const uvs = floatAttribute(primitive, 'TEXCOORD_0', at, vertexCount);
-  const uvs1 = floatAttribute(primitive, 'TEXCOORD_1', at, vertexCount);
-  const colors = floatAttribute(primitive, 'COLOR_0', at, vertexCount);
-  if (options.weights.some((w) => w !== 0) || options.skin !== undefined) ({ positions, normals, tangents } = deform(primitive, { positions, ...(normals ? { normals } : {}), ...(tangents ? { tangents } : {}) }, options));
-
-  const indexAccessor = primitive.getIndices();
-  const count = indexAccessor === null ? vertexCount : indexAccessor.getCount();
-  if (mode === MODE_TRIANGLES && count % 3 !== 0) options.warn?.(`${count} ${indexAccessor === null ? 'vertices' : 'indices'} are not whole triangles; the last ${count % 3} ignored`);
-  let indices: Uint32Array;
-  if (indexAccessor === null) {
-    indices = toTriangleList(mode, sequentialIndices(vertexCount));
-  } else {
-    indices = accessorToUint32(indexAccessor);
-    const restart = options.primitiveRestart && mode !== MODE_TRIANGLES ? RESTART_VALUES[indexAccessor.getComponentType()] : undefined;
-    for (let i = 0; i < indices.length; i++) {
-      if (indices[i] >= vertexCount && indices[i] !== restart) failGltf(`${at}/indices`, `index ${i} is ${indices[i]}, the primitive has ${vertexCount} vertices`);
-    }
-    indices = toTriangleList(mode, indices, restart);
-  }
-  if (indices.length === 0) return { skip: 'the primitive has no complete triangle' };
-
-  const streams: VertexStreams = { positions, indices };
+  const { at, skin } = options;
+  const read = readGltfPrimitive(primitive, {
+    at,
+    fault: failGltf,
+    primitiveRestart: options.primitiveRestart,
+    // Influences only where a skin poses them; morph targets only where a weight moves them.
+    influences: skin !== undefined,
+    readTarget: (t) => (options.weights[t] ?? 0) !== 0,
+    warn: (message) => options.warn?.(message),
+  });
+  if ('skip' in read) return { skip: read.skip };
+  if (skin !== undefined) checkSkinInfluences(read, at, skin.jointCount, failGltf);
+  let positions = read.positions;
+  let normals = read.normals ?? undefined;
+  let tangents = read.tangents ?? undefined;
+  if (options.weights.some((w) => w !== 0) || skin !== undefined) ({ positions, normals, tangents } = deform(read, options));
+  const streams: VertexStreams = { positions, indices: read.indices };
   if (normals !== undefined) streams.normals = normals;
   if (tangents !== undefined) streams.tangents = tangents;
-  if (uvs !== undefined) streams.uvs = uvs;
-  if (uvs1 !== undefined) streams.uvs1 = uvs1;
-  if (colors !== undefined) streams.colors = colors;
+  if (read.uvs !== null) streams.uvs = read.uvs;
+  if (read.uvs1 !== null) streams.uvs1 = read.uvs1;
+  if (read.colors !== null) streams.colors = read.colors;
   return streams;
 }

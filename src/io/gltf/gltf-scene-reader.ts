@@ -19,6 +19,7 @@ import { cameraFromNode, framingCamera, type GltfBounds, type GltfCameraInfo } f
 import { readGltfDocument, type GltfDecoderModules, type GltfSource } from './document-reader.ts';
 import { failGltf, pointer } from './errors.ts';
 import { primitiveGeometry, type PrimitiveGeometryOptions } from './geometry.ts';
+import { usesPrimitiveRestart } from './primitive/read-primitive.ts';
 import { worldLight } from './lights.ts';
 import { defaultGltfMaterial, mapMaterial } from './materials.ts';
 import { composeTrs, determinant3, IDENTITY, multiply, transformPoint, type Mat4 } from '../../math/mat4.ts';
@@ -256,7 +257,7 @@ export async function readGltfScene(source: GltfSource, rawOptions: GltfLoadOpti
   const asset: LoadedAsset = {
     document,
     extensionsUsed,
-    primitiveRestart: extensionsUsed.includes('KHR_mesh_primitive_restart'),
+    primitiveRestart: usesPrimitiveRestart(document),
     nodeIndex: indexMap(root.listNodes()),
     meshIndex: indexMap(root.listMeshes()),
     cameraIndex: indexMap(root.listCameras()),

@@ -9,8 +9,7 @@ import type { RasterSkinnedMeshInput } from '../types.ts';
 
 /** A primitive's streams and influences as a raster deformable mesh. */
 export function skinnedMeshFromPrimitive(primitive: ModelPrimitive, jointCount: number, material: number | undefined): RasterSkinnedMeshInput {
-  const out: RasterSkinnedMeshInput = { positions: primitive.positions, influences: primitive.influences };
-  if (primitive.indices !== null) out.indices = primitive.indices;
+  const out: RasterSkinnedMeshInput = { positions: primitive.positions, indices: primitive.indices, influences: primitive.influences };
   if (primitive.normals !== null) out.normals = primitive.normals;
   if (primitive.tangents !== null) out.tangents = primitive.tangents;
   if (primitive.uvs !== null) out.uvs = primitive.uvs;
@@ -35,8 +34,7 @@ export function skinnedMeshFromPrimitive(primitive: ModelPrimitive, jointCount: 
 }
 
 export function staticMeshFromPrimitive(primitive: ModelPrimitive, material: number | undefined): WavefrontMeshInput {
-  const out: WavefrontMeshInput = { positions: primitive.positions };
-  if (primitive.indices !== null) out.indices = primitive.indices;
+  const out: WavefrontMeshInput = { positions: primitive.positions, indices: primitive.indices };
   if (primitive.normals !== null) out.normals = primitive.normals;
   if (primitive.tangents !== null) out.tangents = primitive.tangents;
   if (primitive.uvs !== null) out.uvs = primitive.uvs;

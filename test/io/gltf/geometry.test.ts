@@ -4,7 +4,7 @@ import { Document, Primitive } from '@gltf-transform/core';
 import { EXTMeshoptCompression, KHRAccessorFloat16, KHRAccessorFloat64, KHRDracoMeshCompression, KHRMeshPrimitiveRestart, KHRMeshQuantization } from '@gltf-transform/extensions';
 import { MeshoptEncoder } from 'meshoptimizer';
 import { loadGltfScene } from '../../../src/io/index.ts';
-import { toTriangleList } from '../../../src/io/gltf/topology.ts';
+import { toTriangleList } from '../../../src/io/gltf/primitive/topology.ts';
 import { accessor, assertClose, rejectsWith, toGlb } from './helpers.ts';
 
 /** z component of the counter-clockwise normal of each triangle. */

@@ -1,0 +1,7 @@
+/**
+ * How the primitive reader reports a fault in the asset: a JSON pointer (RFC 6901) into the asset's
+ * JSON (`/meshes/2/primitives/0/attributes/NORMAL`) and a message, and the reporter throws. Each
+ * caller keeps its own error contract: the path tracer's loader throws INVALID_GLTF with the
+ * pointer, the animated-model reader INVALID_MODEL with the pointer as a dotted field.
+ */
+export type PrimitiveFault = (pointer: string, message: string) => never;
