@@ -29,7 +29,7 @@ import {
 import { fresnelDielectric } from '../reference/fresnel.ts';
 import { ggxG2, reflect, refract, type Alphas } from '../reference/microfacet.ts';
 import { deltaAlpha } from '../reference/lobes.ts';
-import { charlieLambda, sheenAlpha } from '../extensions/sheen/reference.ts';
+import { charlieLambda, sheenAlpha } from '../extensions/sheen/sheen-charlie.ts';
 import { dot, type Vec3 } from '../reference/vector.ts';
 
 export interface AlbedoTables {
