@@ -8,6 +8,7 @@ import { join } from 'node:path';
 import { createCornellBoxScene, createWavefrontPathTracingComputeRenderer, loadEnvironmentMap, loadGltfScene, loadSceneFile } from '../../src/index.ts';
 import { testDevice } from '../helpers/gpu.ts';
 import { assetFolder, refused, triangleDataUri, triangleGltf } from './helpers.ts';
+import { encodeExr } from '../io/images/environment-encoders.ts';
 
 const bytes = (json: unknown): Uint8Array => new TextEncoder().encode(typeof json === 'string' ? json : JSON.stringify(json));
 
@@ -163,8 +164,7 @@ test('scene files are refused at load by the renderer validation, and references
 });
 
 test("negativeTexels: 'zero' zeroes negative texels also without an onNegativeTexels callback", async () => {
-  const hdrFloat = new Float32Array([1, 1, 1, 1, -0.5, 2, 3, 1]);
-  const exr = (await import('./exr-fixture.ts')).scanlineExr(2, 1, hdrFloat);
+  const exr = encodeExr(2, 1, new Float64Array([1, 1, 1, -0.5, 2, 3]), 'float', 'none');
   await refused(loadEnvironmentMap(exr), 'INVALID_ENVIRONMENT', 'source.data[4]', /must be finite and >= 0/);
   const map = await loadEnvironmentMap(exr, { negativeTexels: 'zero' });
   assert.deepEqual([...map.data], [1, 1, 1, 1, 0, 2, 3, 1]);

@@ -1,6 +1,6 @@
 import type { Document, Material, Node } from '@gltf-transform/core';
 import { fail } from '../../errors/validate.ts';
-import type { PrimitiveFault } from '../../io/gltf/primitive/primitive-fault.ts';
+import { pointerToDottedField, type PrimitiveFault } from '../../io/gltf/primitive/primitive-fault.ts';
 import { readGltfPrimitive, usesPrimitiveRestart } from '../../io/gltf/primitive/read-primitive.ts';
 import { checkSkinInfluences } from '../../io/gltf/primitive/skin-influences.ts';
 import { readAnimationClips } from '../clips/read-clips.ts';
@@ -20,11 +20,7 @@ export interface ReadAnimatedModelOptions {
  * `modelAsset.meshes[0].primitives[1].attributes.WEIGHTS_0[12]`).
  */
 function modelFault(prefix: string): PrimitiveFault {
-  return (pointer, message) => {
-    const segments = pointer.split('/').slice(1).map((s) => s.replaceAll('~1', '/').replaceAll('~0', '~'));
-    const field = segments.reduce((out, s) => (/^\d+$/.test(s) ? `${out}[${s}]` : out === '' ? s : `${out}.${s}`), '');
-    return fail('INVALID_MODEL', `${prefix}${field}`, message);
-  };
+  return (pointer, message) => fail('INVALID_MODEL', `${prefix}${pointerToDottedField(pointer)}`, message);
 }
 
 function readMeshes(document: Document, prefix: string): ModelMesh[] {

@@ -18,3 +18,12 @@ export function failGltf(field: string, message: string, cause?: unknown): never
 export function pointer(...segments: ReadonlyArray<string | number>): string {
   return segments.map((s) => `/${String(s).replaceAll('~', '~0').replaceAll('/', '~1')}`).join('');
 }
+
+/**
+ * src/animation's dotted fields as JSON pointers: `meshes[0].primitives[1].attributes.JOINTS_0[12]`
+ * -> `/meshes/0/primitives/1/attributes/JOINTS_0/12` (the other way: primitive/primitive-fault.ts).
+ */
+export function dottedFieldToPointer(field: string): string {
+  const segments = field.replace(/\[(\d+)\]/g, '.$1').split('.').filter((s) => s !== '');
+  return pointer(...segments);
+}

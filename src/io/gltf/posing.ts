@@ -17,7 +17,7 @@ import { evaluateClipPose } from '../../animation/pose/evaluate-clip.ts';
 import { createRestPose } from '../../animation/pose/pose.ts';
 import { computeJointMatrices, computeWorldMatrices } from '../../animation/pose/world-matrices.ts';
 import { GpuRendererError, isGpuRendererError } from '../../errors/gpu-renderer-error.ts';
-import { failGltf, pointer } from './errors.ts';
+import { dottedFieldToPointer, failGltf, pointer } from './errors.ts';
 
 /** One animation of the asset. */
 export interface GltfAnimationInfo {
@@ -63,12 +63,6 @@ export interface GltfPose {
   weights(node: number): Float64Array;
   /** Joint matrices of skin `s` (16 per joint): world(joint) x inverse bind matrix. */
   jointMatrices(skin: number): Float64Array;
-}
-
-/** `nodes[3].children[0]`, `meshes[0].primitives[1].attributes.JOINTS_0[12]` -> JSON pointers. */
-export function dottedFieldToPointer(field: string): string {
-  const segments = field.replace(/\[(\d+)\]/g, '.$1').split('.').filter((s) => s !== '');
-  return pointer(...segments);
 }
 
 /** Runs `read`, turning src/animation's INVALID_MODEL / INVALID_ANIMATION errors into INVALID_GLTF with pointers. */
