@@ -143,13 +143,15 @@ export function materialLayersModule(): string {
   layers.forEach((l, k) => {
     emit(`  if (${l.has}(ext)) {`);
     emit(`    if (pick.rest < w.${l.field}) {`);
-    emit(`      var s = ${l.alias}::sample(l.${l.field}, wo, u);`);
-    emit('      if ((s.flags & BSDF_SPECULAR) != 0u) {');
-    emit(`        s.pdf *= w.${l.field};`);
-    for (const above of layers.slice(0, k)) emit(`        if (${above.has}(ext)) { s.f *= ${above.alias}::scale(l.${above.field}, wo, s.wi); }`);
-    emit('      }');
+    emit(`      let s = ${l.alias}::sample(l.${l.field}, wo, u);`);
+    emit('      var f = s.f;');
+    if (k > 0) {
+      emit('      if ((s.flags & BSDF_SPECULAR) != 0u) {');
+      for (const above of layers.slice(0, k)) emit(`        if (${above.has}(ext)) { f *= ${above.alias}::scale(l.${above.field}, wo, s.wi); }`);
+      emit('      }');
+    }
     emit('      pick.picked = true;');
-    emit('      pick.sample = s;');
+    emit(`      pick.sample = BsdfSample(s.wi, w.${l.field}, f, 1.0, s.flags);`);
     emit('      return pick;');
     emit('    }');
     emit(`    pick.rest -= w.${l.field};`);
