@@ -21,7 +21,7 @@ import { computeSahCost } from './bvh-sah.ts';
 import type { BvhBuildParams } from './bvh-kernels.ts';
 import { BVH_NODE_BYTES, bvhKernels, eventLoopYield } from './bvh-serial.ts';
 import { compiledBvhWasm, wasmSlotLayout } from './bvh-wasm.ts';
-import type { BvhBuildResult } from './bvh-builder.ts';
+import type { BvhBuildResult } from './bvh-build-types.ts';
 import type { BvhWorkerPool, BvhWorkerReply } from './bvh-worker-pool.ts';
 
 /** Subtree jobs per worker the top splits aim for (more balances better, costs more round trips). */

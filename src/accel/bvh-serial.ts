@@ -5,7 +5,7 @@
 import { computeSahCost } from './bvh-sah.ts';
 import { createBvhKernels, type BvhBuildParams, type BvhKernels, type BvhWasmBackend, type SlotBuffers } from './bvh-kernels.ts';
 import { compiledBvhWasm, wasmSlotLayout } from './bvh-wasm.ts';
-import type { BvhBuildOptions, BvhBuildResult } from './bvh-builder.ts';
+import type { BvhBuildOptions, BvhBuildResult } from './bvh-build-types.ts';
 
 /** Hard depth limit: the WGSL traversal stack holds 64 entries and pushes at most one per level. */
 export const BVH_MAX_DEPTH = 48;

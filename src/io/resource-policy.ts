@@ -20,11 +20,14 @@
  */
 import type * as NodePath from 'node:path';
 import type * as NodeUrl from 'node:url';
-import { GpuRendererError, type GpuRendererErrorCode } from '../errors/gpu-renderer-error.ts';
+import { GpuRendererError } from '../errors/gpu-renderer-error.ts';
 import { describe } from '../errors/validate.ts';
 import { decodeDataUri } from './data-uri.ts';
 import { isNodeRuntime, nodeModule } from './platform.ts';
+import { DecodeBudget, refuse, type ResolvedResourcePolicy, type ResourceSite } from './resource-limits.ts';
 import { fetchBytes, readLocalFile } from './resource-read.ts';
+
+export { DecodeBudget, refuse, type ResolvedResourcePolicy, type ResourceSite } from './resource-limits.ts';
 
 /** The `resourcePolicy` option of every loader. */
 export interface ResourcePolicy {
@@ -54,22 +57,6 @@ export interface ResourcePolicy {
   decodeTimeoutMs?: number;
 }
 
-export interface ResolvedResourcePolicy {
-  readonly allowedOrigins: readonly string[];
-  /**
-   * The budget a load charges; shared by the loads one load starts (a scene file's glTF assets),
-   * so that references cannot multiply it. Undefined: each load starts its own.
-   */
-  readonly budget?: DecodeBudget;
-  /** A folder URL (ending in '/'), or undefined. */
-  readonly root: URL | undefined;
-  readonly maxResourceBytes: number;
-  readonly maxDecodedBytes: number;
-  readonly maxImageDimension: number;
-  readonly fetchTimeoutMs: number;
-  readonly decodeTimeoutMs: number;
-}
-
 const resolvedPolicies = new WeakSet<object>();
 
 function markResolved(policy: ResolvedResourcePolicy): ResolvedResourcePolicy {
@@ -96,16 +83,6 @@ export function derivePolicy(policy: ResolvedResourcePolicy, changes: { root?: U
 /** The policy's shared budget, or a new one for this load. */
 export function budgetOf(policy: ResolvedResourcePolicy): DecodeBudget {
   return policy.budget ?? new DecodeBudget(policy.maxDecodedBytes);
-}
-
-/** Where a fault is reported: the loader's error code and the field naming the reference. */
-export interface ResourceSite {
-  code: GpuRendererErrorCode;
-  field: string;
-}
-
-export function refuse(site: ResourceSite, message: string, cause?: unknown): never {
-  throw new GpuRendererError(site.code, message, cause === undefined ? { field: site.field } : { field: site.field, cause });
 }
 
 const KEYS = ['allowedOrigins', 'root', 'maxResourceBytes', 'maxDecodedBytes', 'maxImageDimension', 'fetchTimeoutMs', 'decodeTimeoutMs'];
@@ -339,36 +316,4 @@ async function readLocation(
     return fetchBytes(url, policy, site, signal, redirectOk, label ?? url.href);
   }
   refuse(site, `${url.protocol} URLs are not read (file paths, http(s), blob: and data: URIs are)`);
-}
-
-function formatBytes(n: number): string {
-  if (n >= 2 ** 30) return `${(n / 2 ** 30).toFixed(1)} GiB`;
-  if (n >= 2 ** 20) return `${(n / 2 ** 20).toFixed(1)} MiB`;
-  return `${n} bytes`;
-}
-
-/**
- * The decoded-bytes budget of one load (`resourcePolicy.maxDecodedBytes`): every allocation the
- * asset's numbers decide (resources read, accessor arrays, image texels, map texels) is charged
- * before it is made, and a charge over the budget is a typed error at the site that asked.
- */
-export class DecodeBudget {
-  private used = 0;
-  readonly limit: number;
-
-  constructor(limit: number) {
-    this.limit = limit;
-  }
-
-  get spent(): number {
-    return this.used;
-  }
-
-  charge(bytes: number, site: ResourceSite, what: string): void {
-    if (!(bytes >= 0) || this.used + bytes > this.limit) {
-      const need = Number.isFinite(bytes) ? formatBytes(bytes) : String(bytes);
-      refuse(site, `${what} need ${need}, which would bring this load to ${formatBytes(this.used + bytes)}, over its budget of ${formatBytes(this.limit)} (resourcePolicy.maxDecodedBytes)`);
-    }
-    this.used += bytes;
-  }
 }

@@ -9,11 +9,7 @@ import type * as NodePath from 'node:path';
 import type * as NodeUrl from 'node:url';
 import { GpuRendererError } from '../errors/gpu-renderer-error.ts';
 import { isNodeRuntime, nodeModule } from './platform.ts';
-import type { ResolvedResourcePolicy, ResourceSite } from './resource-policy.ts';
-
-function refuse(site: ResourceSite, message: string, cause?: unknown): never {
-  throw new GpuRendererError(site.code, message, cause === undefined ? { field: site.field } : { field: site.field, cause });
-}
+import { refuse, type ResolvedResourcePolicy, type ResourceSite } from './resource-limits.ts';
 
 function describeFsError(error: unknown): string {
   const e = error as { code?: string; message?: string };

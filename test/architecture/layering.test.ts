@@ -1,12 +1,11 @@
-// No lower layer imports a higher one (the order is in layers.ts). The import graph comes from the
-// TypeScript compiler's own pre-processor (static imports, re-exports and dynamic `import()`), so
-// what is checked is what the compiler resolves, not a text pattern.
+// No lower layer imports a higher one (the order is in layers.ts), in the import graph of
+// import-graph.ts.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { readdirSync, readFileSync } from 'node:fs';
-import { dirname, join, posix, relative, resolve } from 'node:path';
+import { readdirSync } from 'node:fs';
 import { fileURLToPath } from 'node:url';
 import ts from 'typescript';
+import { importGraph, type Edge } from './import-graph.ts';
 import { layers } from './layers.ts';
 
 const src = fileURLToPath(new URL('../../src/', import.meta.url));
@@ -16,15 +15,6 @@ const src = fileURLToPath(new URL('../../src/', import.meta.url));
 const knownUpward: Readonly<Record<string, string>> = {
 };
 
-function sourceFiles(dir: string): string[] {
-  return readdirSync(dir, { withFileTypes: true }).flatMap((entry) => {
-    const path = join(dir, entry.name);
-    if (entry.isDirectory()) return sourceFiles(path);
-    return /\.(ts|js)$/.test(entry.name) ? [path] : [];
-  });
-}
-
-const toPosix = (path: string): string => path.split('\\').join(posix.sep);
 const rank = new Map(layers.flatMap((group, i) => group.map((unit) => [unit, i] as const)));
 const units = [...rank.keys()].sort((a, b) => b.length - a.length);
 
@@ -41,26 +31,6 @@ function unitOf(file: string): string | null {
   const unit = units.find((u) => contains(u, file));
   assert.ok(unit, `${file} lies in no unit of test/architecture/layers.ts`);
   return unit;
-}
-
-interface Edge {
-  from: string;
-  to: string;
-}
-
-/** Every import of one src/ module into another, as src-relative paths. */
-function importGraph(): Edge[] {
-  const edges: Edge[] = [];
-  for (const path of sourceFiles(src)) {
-    const from = toPosix(relative(src, path));
-    const info = ts.preProcessFile(readFileSync(path, 'utf8'), true, true);
-    for (const { fileName } of info.importedFiles) {
-      if (!fileName.startsWith('.')) continue;
-      const to = toPosix(relative(src, resolve(dirname(path), fileName)));
-      if (!to.startsWith('..')) edges.push({ from, to });
-    }
-  }
-  return edges;
 }
 
 test('layering: every folder of src/ has a layer', () => {
@@ -83,7 +53,7 @@ function upwardImports(edges: readonly Edge[]): string[] {
 }
 
 test('layering: no module imports a higher layer', () => {
-  const edges = importGraph();
+  const edges = importGraph(src);
   assert.ok(edges.length > 500, `the import graph looks empty (${edges.length} edges)`);
   const found = upwardImports(edges);
   const upward = found.filter((key) => !(key in knownUpward));

@@ -8,7 +8,7 @@
 // loader to set them to zero (`negativeTexels: 'zero'`) and says how many and how much energy that
 // adds, under the picker.
 import { loadEnvironmentMap, type EnvironmentMap, type ExrLoaderConstructor, type NegativeTexelReport } from '@plasius/gpu-renderer';
-import type { EnvironmentSource } from './environment.ts';
+import type { EnvironmentSource } from './environment-source.ts';
 import { rangeControl, selectControl } from '../ui/controls.ts';
 
 interface HdriChoice {

@@ -3,7 +3,7 @@
 // (createEnvironmentLighting(input).suggestedExposure: a white surface facing the brightest
 // direction displays at about 1); the exposure slider moves on from there.
 import { createEnvironmentLighting, type EnvironmentLightingPreset } from '@plasius/gpu-renderer';
-import type { EnvironmentSource } from './environment.ts';
+import type { EnvironmentSource } from './environment-source.ts';
 import { selectControl } from '../ui/controls.ts';
 
 const presets: { value: EnvironmentLightingPreset; label: string }[] = [

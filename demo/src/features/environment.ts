@@ -2,24 +2,11 @@
 // renderer options and the exposure it looks right at; the "Light" picker chooses one. Sources:
 // a uniform colour (the scene's suggestion), HDRI maps (environment-hdri.ts) and the sun and sky
 // presets (environment-sky.ts). Choosing a source or changing its controls rebuilds the renderer.
-import type { WavefrontPathTracingOptions } from '@plasius/gpu-renderer';
 import type { DemoContext, DemoFeature } from '../extensions.ts';
-import type { DemoScene } from '../scenes/types.ts';
 import { colourControl, hexToLinear, linearToHex, rangeControl, section, selectControl, setRangeValue } from '../ui/controls.ts';
 import { hdriSource } from './environment-hdri.ts';
+import type { EnvironmentSource } from './environment-source.ts';
 import { skySource } from './environment-sky.ts';
-
-export interface EnvironmentSource {
-  id: string;
-  label: string;
-  /** Adds the source's controls to `parent` (shown only while the source is selected). */
-  mount(parent: HTMLElement, context: DemoContext, params: URLSearchParams): void;
-  /** May wait for a download or a decode (the renderer is built once it resolves). */
-  rendererOptions(): Partial<WavefrontPathTracingOptions> | Promise<Partial<WavefrontPathTracingOptions>>;
-  sceneLoaded?(scene: DemoScene): void;
-  /** Exposure in stops the source looks right at; undefined: the scene's suggestion. */
-  exposureEv?(): number | undefined;
-}
 
 /** Uniform radiance: a colour (sRGB picker, converted to linear) times a strength. */
 function uniformColourSource(): EnvironmentSource {

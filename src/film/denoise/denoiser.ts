@@ -9,10 +9,10 @@
  */
 import type { ShaderFeatures } from '../../shaders/features.ts';
 import type { DispatchCounter } from '../dispatch-counter.ts';
+import type { WavefrontDenoiserName } from './denoiser-name.ts';
 import type { WavefrontDenoiseOptions, WavefrontDenoiseSettings } from './settings.ts';
 
-/** The denoisers the renderer ships. */
-export type WavefrontDenoiserName = 'oidn' | 'atrous';
+export type { WavefrontDenoiserName } from './denoiser-name.ts';
 
 /** Counts the compute dispatches a denoiser encodes (the renderer's `gpuParallelism` statistics). */
 export type DenoiserDispatchTally = DispatchCounter;

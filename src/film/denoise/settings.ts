@@ -1,4 +1,4 @@
-import type { WavefrontDenoiserName } from './denoiser.ts';
+import type { WavefrontDenoiserName } from './denoiser-name.ts';
 
 /**
  * Options of the denoiser (`denoise: true`, `'oidn'` or `'atrous'` take every default). The

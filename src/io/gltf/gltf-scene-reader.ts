@@ -16,7 +16,7 @@ import type {
 } from '../../scene/types.ts';
 import { accessorToFloat32 } from '../accessors.ts';
 import { cameraFromNode, framingCamera, type GltfBounds, type GltfCameraInfo } from './cameras.ts';
-import { readGltfDocument, type GltfDecoderModules, type GltfSource } from './document-reader.ts';
+import { readGltfDocument, type GltfSource } from './document-reader.ts';
 import { failGltf, pointer } from './errors.ts';
 import { primitiveGeometry, type PrimitiveGeometryOptions } from './geometry.ts';
 import { usesPrimitiveRestart } from './primitive/read-primitive.ts';
@@ -28,34 +28,12 @@ import { chooseAnimation, needsRig, poseRig, poseTime, readRig, type GltfAnimati
 import { withMikkTSpaceTangents } from './tangents.ts';
 import { TextureTable } from './textures.ts';
 import { listVariants, selectVariant, variantMaterial } from './variants.ts';
-import { validateGltfLoadOptions } from './load-options.ts';
+import { validateGltfLoadOptions, type GltfLoadOptions } from './load-options.ts';
 import { acceptScene, type SceneOrigins } from './scene-acceptance.ts';
-import { resolveResourcePolicy, type ResourcePolicy } from '../resource-policy.ts';
+import { resolveResourcePolicy } from '../resource-policy.ts';
 import type { VertexStreams } from './vertex-streams.ts';
 
-export interface GltfLoadOptions extends GltfPoseOptions {
-  /**
-   * The camera to render from: a glTF camera index (`/cameras/i`) or a name (a camera node's name,
-   * else a camera's name). Default: the first camera met in the scene's node order; without one, a
-   * camera framing the scene bounds (see `GltfScene.camera`).
-   */
-  camera?: number | string;
-  /** Image width / height the default camera frames the bounds for (assets without a camera); default 1. */
-  aspectRatio?: number;
-  /** KHR_materials_variants variant name; an unknown name throws INVALID_OPTION (field `variant`). */
-  variant?: string;
-  /** The glTF scene (index or name); default the asset's default scene, else its first scene. */
-  scene?: number | string;
-  /** Aborts reading (file reads and fetches) and loading between stages. */
-  signal?: AbortSignal;
-  /** Decoder modules for KHR_draco_mesh_compression / EXT_meshopt_compression (loaded on demand in Node). */
-  decoders?: GltfDecoderModules;
-  /**
-   * What the asset may read and how much it may decode (src/io/resource-policy.ts): by default
-   * references stay in the asset's folder, no other origin is fetched, 2 GiB are decoded at most.
-   */
-  resourcePolicy?: ResourcePolicy;
-}
+export type { GltfLoadOptions } from './load-options.ts';
 
 /**
  * A loaded glTF scene. Its own enumerable keys are exactly renderer scene keys, so

@@ -7,10 +7,11 @@
  * a strict forest), and the extensions a file requires (3.12).
  */
 import { failGltf, pointer } from './errors.ts';
+import { isObject, type Json } from './json-object.ts';
 import { SUPPORTED_EXTENSIONS } from './extensions.ts';
 import { validateGltfProperties } from './property-validation.ts';
 
-type Json = Record<string, unknown>;
+export { isObject } from './json-object.ts';
 
 const COMPONENT_SIZES: Readonly<Record<number, number>> = { 5120: 1, 5121: 1, 5122: 2, 5123: 2, 5125: 4, 5126: 4, 5131: 2, 5130: 8 };
 const TYPE_SIZES: Readonly<Record<string, number>> = { SCALAR: 1, VEC2: 2, VEC3: 3, VEC4: 4, MAT2: 4, MAT3: 9, MAT4: 16 };
@@ -19,10 +20,6 @@ const TYPE_SIZES: Readonly<Record<string, number>> = { SCALAR: 1, VEC2: 2, VEC3:
 export function isMeshoptFallback(json: Json, buffer: unknown): boolean {
   const used = Array.isArray(json.extensionsUsed) && json.extensionsUsed.includes('EXT_meshopt_compression');
   return used && isObject(buffer) && isObject(buffer.extensions) && isObject(buffer.extensions.EXT_meshopt_compression) && buffer.extensions.EXT_meshopt_compression.fallback === true;
-}
-
-export function isObject(value: unknown): value is Json {
-  return typeof value === 'object' && value !== null && !Array.isArray(value);
 }
 
 function object(value: unknown, field: string): Json {

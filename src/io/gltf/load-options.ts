@@ -1,6 +1,32 @@
 /** `loadGltfScene` options: unknown keys and values of the wrong type are INVALID_OPTION naming the key. */
 import { fail, describe } from '../../errors/validate.ts';
-import type { GltfLoadOptions } from './gltf-scene-reader.ts';
+import type { ResourcePolicy } from '../resource-policy.ts';
+import type { GltfDecoderModules } from './document-reader.ts';
+import type { GltfPoseOptions } from './posing.ts';
+
+export interface GltfLoadOptions extends GltfPoseOptions {
+  /**
+   * The camera to render from: a glTF camera index (`/cameras/i`) or a name (a camera node's name,
+   * else a camera's name). Default: the first camera met in the scene's node order; without one, a
+   * camera framing the scene bounds (see `GltfScene.camera`).
+   */
+  camera?: number | string;
+  /** Image width / height the default camera frames the bounds for (assets without a camera); default 1. */
+  aspectRatio?: number;
+  /** KHR_materials_variants variant name; an unknown name throws INVALID_OPTION (field `variant`). */
+  variant?: string;
+  /** The glTF scene (index or name); default the asset's default scene, else its first scene. */
+  scene?: number | string;
+  /** Aborts reading (file reads and fetches) and loading between stages. */
+  signal?: AbortSignal;
+  /** Decoder modules for KHR_draco_mesh_compression / EXT_meshopt_compression (loaded on demand in Node). */
+  decoders?: GltfDecoderModules;
+  /**
+   * What the asset may read and how much it may decode (src/io/resource-policy.ts): by default
+   * references stay in the asset's folder, no other origin is fetched, 2 GiB are decoded at most.
+   */
+  resourcePolicy?: ResourcePolicy;
+}
 
 const KEYS = ['camera', 'aspectRatio', 'variant', 'scene', 'animation', 'time', 'signal', 'decoders', 'resourcePolicy'];
 

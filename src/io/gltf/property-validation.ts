@@ -9,9 +9,7 @@
 import { anyMaterialExtensions } from '../../materials/extensions/index.ts';
 import { maxRadiance } from '../../scene/limits.ts';
 import { failGltf, pointer } from './errors.ts';
-import { isObject } from './json-validation.ts';
-
-type Json = Record<string, unknown>;
+import { isObject, type Json } from './json-object.ts';
 
 function show(value: unknown): string {
   if (typeof value === 'string') return JSON.stringify(value.length > 40 ? `${value.slice(0, 40)}...` : value);
