@@ -37,18 +37,40 @@ function storageBufferCount(program: ProgramName): number {
   return generatedPrograms[program].bindings.filter((name) => pathTracerBindings[name as keyof typeof pathTracerBindings].kind === 'storage').length;
 }
 
-/** Refuses an integrator whose kernels bind more storage buffers than the device offers per stage. */
-export function checkIntegratorLimits(integrator: PathTracingIntegrator, limits: GPUSupportedLimits): void {
-  for (const name of integratorKernels[integrator]) {
-    const needed = storageBufferCount(wavefrontKernels[name].program);
-    if (needed > limits.maxStorageBuffersPerShaderStage) {
-      throw new GpuRendererError(
-        'INVALID_OPTION',
-        `the ${integrator} integrator binds ${needed} storage buffers in one kernel; the device offers ${limits.maxStorageBuffersPerShaderStage} per shader stage (request a device with maxStorageBuffersPerShaderStage >= ${needed}, or use the default integrator)`,
-        { field: 'integrator' },
-      );
-    }
+/** The most storage buffers one kernel of an integrator binds in its one (compute) stage. */
+export function integratorStorageBuffers(integrator: PathTracingIntegrator): number {
+  return Math.max(...integratorKernels[integrator].map((name) => storageBufferCount(wavefrontKernels[name].program)));
+}
+
+/** The integrator a renderer runs, and why it is not the one asked for (null when it is). */
+export interface IntegratorChoice {
+  integrator: PathTracingIntegrator;
+  warning: string | null;
+}
+
+/**
+ * The integrator that runs on a device: the one requested where the device offers the storage
+ * buffers per stage its kernels bind, else the default wavefront, which binds fewer (WebGPU's
+ * guaranteed 8) and computes the same image. Only a device too small for the wavefront too is
+ * refused, with INVALID_OPTION naming `integrator`.
+ */
+export function chooseIntegrator(requested: PathTracingIntegrator, limits: GPUSupportedLimits): IntegratorChoice {
+  const offered = limits.maxStorageBuffersPerShaderStage;
+  const needed = integratorStorageBuffers(requested);
+  if (needed <= offered) return { integrator: requested, warning: null };
+  const fallback: PathTracingIntegrator = 'wavefront';
+  const fallbackNeeds = integratorStorageBuffers(fallback);
+  if (requested === fallback || fallbackNeeds > offered) {
+    throw new GpuRendererError(
+      'INVALID_OPTION',
+      `the ${requested} integrator binds ${needed} storage buffers in one kernel; the device offers ${offered} per shader stage (request a device with maxStorageBuffersPerShaderStage >= ${Math.min(needed, fallbackNeeds)})`,
+      { field: 'integrator' },
+    );
   }
+  return {
+    integrator: fallback,
+    warning: `integrator: the ${requested} integrator binds ${needed} storage buffers in one kernel; the device offers ${offered} per shader stage (maxStorageBuffersPerShaderStage), so the ${fallback} integrator runs instead (the same image; request a device with maxStorageBuffersPerShaderStage >= ${needed} for the ${requested})`,
+  };
 }
 
 const pipelineCache = new WeakMap<GPUDevice, Map<string, Promise<PathTracerPipelines>>>();

@@ -18,7 +18,7 @@ import { FrameReadbackRing } from './frame-stats.ts';
 import { WavefrontEncoder } from './frame-encoder.ts';
 import { GpuBufferSet } from './gpu-buffers.ts';
 import { instanceIdTables } from './instance-ids.ts';
-import { checkIntegratorLimits, pathTracerPipelines, type PathTracerPipelines } from './pipelines.ts';
+import { chooseIntegrator, pathTracerPipelines, type IntegratorChoice, type PathTracerPipelines } from './pipelines.ts';
 import { FilmDisplay } from '../film/display/film-display.ts';
 import { renderFrame, renderOnce, outputState } from './render-frame.ts';
 import { readAov, readDenoised, readPixels, readRadiance } from './renderer-readback.ts';
@@ -32,6 +32,7 @@ import { SubmissionQueue } from './submission-queue.ts';
 import { planInput, sceneFeatures } from './scene-plan.ts';
 import { deviceWavePaths, gridWorkgroupLimit, waveBound } from './wave-capacity.ts';
 import type {
+  PathTracingIntegrator,
   WavefrontFrameStats,
   WavefrontPathTracingOptions,
   WavefrontPathTracingRenderer,
@@ -56,7 +57,7 @@ export { adaptiveStepSamples } from './frame-passes.ts';
  * scene once and compiles the kernels specialised for the scene's features.
  */
 export async function createWavefrontPathTracingComputeRenderer(options: WavefrontPathTracingOptions): Promise<WavefrontPathTracingRenderer> {
-  const config = createWavefrontPathTracingComputeConfig(options);
+  const requested = createWavefrontPathTracingComputeConfig(options);
   const scene = normalizeWavefrontScene(options);
   const canvas = options.canvas !== undefined ? resolveCanvasTarget(options.canvas) : null;
   const specialization = options.shaderSpecialization ?? 'scene';
@@ -66,8 +67,10 @@ export async function createWavefrontPathTracingComputeRenderer(options: Wavefro
     ...(options.powerPreference !== undefined ? { powerPreference: options.powerPreference } : {}),
   });
   try {
-    resolveWavefrontDenoiser(config.output, acquired.device);
-    checkIntegratorLimits(config.integrator, acquired.device.limits);
+    resolveWavefrontDenoiser(requested.output, acquired.device);
+    // A device too small for the megakernel runs the wavefront (the same image) and says so.
+    const integrator = chooseIntegrator(requested.integrator, acquired.device.limits);
+    const config: WavefrontPathTracingComputeConfig = { ...requested, integrator: integrator.integrator };
     const limits = acquired.device.limits;
     // Buffers are checked at the largest wave this renderer may grow to; they start at the work of
     // one call of samplesPerPixel and grow when a frame asks for more (growQueues).
@@ -88,7 +91,7 @@ export async function createWavefrontPathTracingComputeRenderer(options: Wavefro
       config.output.denoise ? prepareWavefrontDenoiser(acquired.device, config.output.denoise, config.output.denoiseWeights, features) : null,
     ]);
     const sources: SceneSources = { materials, features, lightingOptions: lightingOptionsOf(options) };
-    const renderer = new WavefrontRenderer(acquired, config, scene, sources, prepared, lighting, { ...pipelines, adaptive: adaptivePipelines, denoise: denoisePipelines }, initialPlan, { wavePaths, maxWavePaths });
+    const renderer = new WavefrontRenderer(acquired, { requested: requested.integrator, ...integrator }, config, scene, sources, prepared, lighting, { ...pipelines, adaptive: adaptivePipelines, denoise: denoisePipelines }, initialPlan, { wavePaths, maxWavePaths });
     try {
       await renderer.createAcceleration();
     } catch (error) {
@@ -115,9 +118,12 @@ class WavefrontRenderer extends EventTarget implements WavefrontPathTracingRende
   private readonly atlasTexture: GPUTexture;
   private readonly environmentTexture: GPUTexture;
   private readonly s: RendererState;
+  /** The integrator the options asked for, and the warning when another one runs. */
+  private readonly integrator: IntegratorChoice & { requested: PathTracingIntegrator };
 
   constructor(
     acquired: { device: GPUDevice; ownsDevice: boolean; adapterDescription: string; timestampQueries: boolean; softwareAdapter: boolean },
+    integrator: IntegratorChoice & { requested: PathTracingIntegrator },
     config: WavefrontPathTracingComputeConfig,
     scene: NormalizedScene,
     sources: SceneSources,
@@ -131,6 +137,7 @@ class WavefrontRenderer extends EventTarget implements WavefrontPathTracingRende
     const device = (this.device = acquired.device);
     this.ownsDevice = acquired.ownsDevice;
     this.adapter = acquired.adapterDescription;
+    this.integrator = integrator;
     const b = new GpuBufferSet(device);
     const { resources, resourceMap: map, atlasTexture, environmentTexture, textureBytes } = uploadRendererResources(device, b, prepared, lighting, plan);
     this.atlasTexture = atlasTexture;
@@ -249,6 +256,7 @@ class WavefrontRenderer extends EventTarget implements WavefrontPathTracingRende
       samplesPerPixel: s.config.samplesPerPixel,
       tileSize: s.config.tileSize,
       integrator: s.config.integrator,
+      requestedIntegrator: this.integrator.requested,
       wavePaths: s.capacity,
       maxWavePaths: s.maxWavePaths,
       framesInFlight: s.config.framesInFlight,
@@ -259,7 +267,7 @@ class WavefrontRenderer extends EventTarget implements WavefrontPathTracingRende
       sceneObjectCount: s.scene.sceneObjectCount,
       instanceCount: s.scene.instanceCount,
       textureCount: p.atlas.textureCount,
-      warnings: p.warnings,
+      warnings: this.integrator.warning === null ? p.warnings : [this.integrator.warning, ...p.warnings],
       adapter: this.adapter,
       memory: rendererMemory(s.buffers, s.textureBytes),
       destroyed: s.destroyed,

@@ -199,8 +199,14 @@ export interface WavefrontRendererSnapshot extends WavefrontOutputState {
   samplesPerPixel: number;
   /** The explicit wave bound (tileSize^2 paths), or null when waves are sized to the device. */
   tileSize: number | null;
-  /** The integrator form the renderer was created with. */
+  /**
+   * The integrator form that runs: the one requested, except that 'megakernel' on a device with
+   * fewer storage buffers per shader stage than it binds runs 'wavefront' (the same image), with a
+   * line in `warnings` saying so.
+   */
   integrator: PathTracingIntegrator;
+  /** The integrator form the options asked for (`integrator`, default 'wavefront'). */
+  requestedIntegrator: PathTracingIntegrator;
   /** Paths per wave the queues now hold (they grow up to the bound as frames need). */
   wavePaths: number;
   /** Most paths a wave may hold on this device (or tileSize^2). */
@@ -213,7 +219,7 @@ export interface WavefrontRendererSnapshot extends WavefrontOutputState {
   instanceCount: number;
   textureCount: number;
   bvhDepth: number;
-  /** Loader and preparation warnings (downscaled textures, ...). */
+  /** Loader, preparation and device warnings (downscaled textures, an integrator the device cannot run, ...). */
   warnings: readonly string[];
   adapter: string;
   memory: WavefrontMemoryStats;

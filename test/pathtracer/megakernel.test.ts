@@ -8,6 +8,7 @@ import assert from 'node:assert/strict';
 import { Document } from '@gltf-transform/core';
 import { encode as encodePng } from 'fast-png';
 import { createWavefrontPathTracingComputeRenderer } from '../../src/pathtracer/index.ts';
+import { chooseIntegrator, integratorStorageBuffers } from '../../src/pathtracer/pipelines.ts';
 import type { WavefrontFrameStats, WavefrontPathTracingOptions } from '../../src/pathtracer/types.ts';
 import { createCornellBoxScene } from '../../src/scene/cornell-box.ts';
 import { GpuRendererError } from '../../src/errors/gpu-renderer-error.ts';
@@ -122,16 +123,56 @@ test('integrator: an unknown form is a typed error naming the field', async () =
   );
 });
 
-test('integrator: a device with fewer storage buffers per stage than the megakernel binds is a typed error naming the field', async () => {
+test('integrator: on a device of the default 8 storage buffers per stage, a megakernel request runs the wavefront, says so, and renders its image', async () => {
   const adapter = await (await getGpu())!.requestAdapter();
-  // WebGPU's default limits: 8 storage buffers per shader stage.
+  // WebGPU's default limits (no limit raised): 8 storage buffers per shader stage, fewer than the
+  // megakernel binds and what many browser adapters expose.
   const device = await adapter!.requestDevice();
+  assert.equal(device.limits.maxStorageBuffersPerShaderStage, 8);
+  const scene = createCornellBoxScene();
+  const options = { device, width: 12, height: 12, maxDepth: 4, samplesPerPixel: 2, seed: 3, meshes: scene.meshes, camera: scene.camera };
+  const images: Float32Array[] = [];
   try {
-    await assert.rejects(
-      createWavefrontPathTracingComputeRenderer({ device, width: 8, height: 8, integrator: 'megakernel' }),
-      (e: unknown) => e instanceof GpuRendererError && e.code === 'INVALID_OPTION' && e.field === 'integrator' && /offers 8 per shader stage/.test(e.message),
-    );
+    for (const integrator of ['megakernel', 'wavefront'] as const) {
+      const renderer = await createWavefrontPathTracingComputeRenderer({ ...options, integrator });
+      try {
+        const snapshot = renderer.getSnapshot();
+        assert.equal(snapshot.integrator, 'wavefront');
+        assert.equal(snapshot.requestedIntegrator, integrator);
+        const said = snapshot.warnings.filter((w) => /megakernel/.test(w));
+        if (integrator === 'megakernel') {
+          assert.equal(said.length, 1, JSON.stringify(snapshot.warnings));
+          assert.match(said[0]!, /binds 13 storage buffers.*offers 8 per shader stage.*wavefront/);
+        } else {
+          assert.deepEqual(said, []);
+        }
+        const stats = await renderer.renderFrame();
+        assert.equal(stats.invalidSamples, 0);
+        assert.ok(stats.rays.extension > 0);
+        images.push((await renderer.readRadiance()).data);
+      } finally {
+        renderer.destroy();
+      }
+    }
   } finally {
     device.destroy();
   }
+  // The same kernels on the same device and seed: the same image, bit for bit, and not black.
+  assert.deepEqual(images[0], images[1]);
+  assert.ok(images[0]!.some((v, i) => i % 4 !== 3 && v > 0));
+});
+
+test('integrator: the wavefront binds at most WebGPU\'s guaranteed 8 storage buffers per stage, so it is the fallback that always runs', () => {
+  // The counts come from the bindings that survive linking (programs.generated.ts), per kernel.
+  assert.ok(integratorStorageBuffers('wavefront') <= 8, `the wavefront binds ${integratorStorageBuffers('wavefront')}`);
+  assert.ok(integratorStorageBuffers('megakernel') > 8);
+  const limits = (maxStorageBuffersPerShaderStage: number) => ({ maxStorageBuffersPerShaderStage }) as GPUSupportedLimits;
+  assert.deepEqual(chooseIntegrator('megakernel', limits(16)), { integrator: 'megakernel', warning: null });
+  assert.deepEqual(chooseIntegrator('wavefront', limits(8)), { integrator: 'wavefront', warning: null });
+  assert.equal(chooseIntegrator('megakernel', limits(integratorStorageBuffers('megakernel') - 1)).integrator, 'wavefront');
+  // Below the WebGPU minimum nothing runs: a typed error naming the field.
+  assert.throws(
+    () => chooseIntegrator('megakernel', limits(7)),
+    (e: unknown) => e instanceof GpuRendererError && e.code === 'INVALID_OPTION' && e.field === 'integrator' && /offers 7 per shader stage/.test(e.message),
+  );
 });
