@@ -8,6 +8,7 @@ import { spawnSync } from 'node:child_process';
 import { mkdirSync, mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { dirname, join } from 'node:path';
+import { fileURLToPath } from 'node:url';
 import { linkTargets, repositoryPath, unlinkedFiles, unpackedLinks } from '../../scripts/markdown-links.ts';
 
 function writeTree(dir: string, tree: Record<string, string>): void {
@@ -62,4 +63,14 @@ test('link targets come from prose, not code; repository links name their path',
   assert.equal(repositoryPath(`${repo}/blob/main/src/a%20b.ts#L3`, repo), 'src/a b.ts');
   assert.equal(repositoryPath(`${repo}/tree/main/test/bundle`, repo), 'test/bundle');
   assert.equal(repositoryPath('https://github.com/other/toy/blob/main/src/a.ts', repo), undefined);
+});
+
+test("this package's packed pages link only packed files, and the README reaches every packed page", () => {
+  // The same checks as pack:check, without its build: what npm packs from the repository as it is.
+  const root = fileURLToPath(new URL('../..', import.meta.url));
+  const files = packedFiles(root);
+  const read = (path: string): string => readFileSync(join(root, path), 'utf8');
+  assert.ok(files.has('docs/cli.md') && files.has('demo/README.md'), 'the README links docs/ and demo/README.md: they are packed');
+  assert.deepEqual(unpackedLinks(files, read), [], 'link these absolutely (the repository URL), or ship them in package.json "files"');
+  assert.deepEqual(unlinkedFiles(files, read, 'README.md', (f) => /^(docs|demo)\//.test(f)), []);
 });
