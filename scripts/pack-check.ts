@@ -11,11 +11,12 @@ import { fileURLToPath } from 'node:url';
 import type { Stats } from 'webpack';
 import { vendoredModules } from './browser-build/index.ts';
 import { noticesFile } from './browser-build/vendored.ts';
+import { unlinkedFiles, unpackedLinks } from './markdown-links.ts';
 
 const root = fileURLToPath(new URL('..', import.meta.url));
 const node = join(root, 'node_modules/.bin/node');
 const tsc = join(root, 'node_modules/typescript-7/bin/tsc');
-const pkg = JSON.parse(readFileSync(join(root, 'package.json'), 'utf8')) as { name: string; version: string };
+const pkg = JSON.parse(readFileSync(join(root, 'package.json'), 'utf8')) as { name: string; version: string; repository?: { url?: string }; homepage?: string; bugs?: { url?: string } };
 
 const failures: string[] = [];
 const summary: string[] = [];
@@ -84,9 +85,18 @@ try {
   for (const f of ['package.json', 'README.md', 'weights/oidn/rt_hdr_alb_nrm.0.js', 'weights/oidn/rt_hdr.0.js', 'weights/oidn/LICENSE.txt', 'dist/esm/index.js', 'dist/esm/index.d.ts', 'dist/cjs/index.js', 'dist/cjs/index.d.ts', 'dist/cjs/package.json', 'dist/esm/cli/main.js', ...browserFiles]) {
     check(`tarball has ${f}`, files.has(f));
   }
-  // weights/oidn: the OIDN weight modules (not their .tza sources), shared by every build.
-  const stray = [...files].filter((f) => !f.startsWith('dist/') && !/^weights\/oidn\/[^/]+\.(js|d\.ts|txt|md)$/.test(f) && !['package.json', 'README.md', 'LICENSE'].includes(f));
-  check('tarball holds only dist/, weights/oidn/ modules, README.md, package.json', stray.length === 0, stray.join(', '));
+  // weights/oidn: the OIDN weight modules (not their .tza sources), shared by every build; the
+  // documentation the README links (docs/, demo/README.md), so its links work from node_modules.
+  const documentation = (f: string): boolean => /^docs\/[^/]+\.md$/.test(f) || /^docs\/images\/[^/]+\.png$/.test(f) || f === 'demo/README.md';
+  const stray = [...files].filter((f) => !f.startsWith('dist/') && !/^weights\/oidn\/[^/]+\.(js|d\.ts|txt|md)$/.test(f) && !documentation(f) && !['package.json', 'README.md', 'LICENSE'].includes(f));
+  check('tarball holds only dist/, weights/oidn/ modules, README.md and the pages it links, package.json', stray.length === 0, stray.join(', '));
+  // The packed pages are the repository's files (npm pack copies them as they are).
+  const readPacked = (path: string): string => readFileSync(join(root, path), 'utf8');
+  const broken = unpackedLinks(files, readPacked);
+  check('every relative link of the packed Markdown pages names a packed file', broken.length === 0, broken.join(', '));
+  const unlinked = unlinkedFiles(files, readPacked, 'README.md', documentation);
+  check('every packed page and image is reached by links from README.md', unlinked.length === 0, unlinked.join(', '));
+  check('package.json names the repository, homepage and issue tracker', Boolean(pkg.repository?.url && pkg.homepage && pkg.bugs?.url));
   const tarball = join(work, info.filename);
 
   // 2. A clean consumer project with the tarball installed (runtime deps from the registry cache).

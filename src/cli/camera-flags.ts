@@ -3,7 +3,7 @@ import { GpuRendererError } from '../errors/gpu-renderer-error.ts';
 import { defaultWavefrontCamera } from '../pathtracer/camera.ts';
 import { lookAtCamera, orbitCamera, sceneBounds } from '../scene/camera-framing.ts';
 import type { WavefrontSceneDescription } from '../scene/types.ts';
-import type { RenderCommand } from './args.ts';
+import type { RenderCommand } from './commands.ts';
 
 /**
  * The scene with the camera the flags ask for: an orbit of the bounds' centre (fitted to the image

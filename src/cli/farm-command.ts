@@ -6,7 +6,7 @@ import { formatFarmStatus, readFarmStatus, type FarmStatus } from '../farm/statu
 import { submitFarmJob } from '../farm/submit.ts';
 import { runFarmWorker } from '../farm/worker.ts';
 import { GpuRendererError, isGpuRendererError } from '../errors/gpu-renderer-error.ts';
-import type { FarmCommand } from './farm-args.ts';
+import type { FarmCommand } from './commands.ts';
 import type { ProgressStream } from './progress.ts';
 
 export async function runFarmCommand(command: FarmCommand, io: { stdout: ProgressStream; stderr: ProgressStream }): Promise<number> {

@@ -7,6 +7,7 @@ import { isGpuRendererError } from '../errors/gpu-renderer-error.ts';
 import { isSequence, parseCliArgs } from './args.ts';
 import { createDawnNoticeFilter } from './dawn-notices.ts';
 import type { ProgressStream } from './progress.ts';
+import { watchParent } from './parent-watch.ts';
 import { formatSummary } from './render-format.ts';
 
 /** Set in the rendering child process; its value is the parent's terminal width ('' when stderr is no terminal). */
@@ -44,12 +45,13 @@ export async function main(argv: readonly string[], stderr: ProgressStream = pro
 
 /**
  * Renders in a child process whose stderr passes through the Dawn notice filter (dawn-notices.ts);
- * stdin and stdout are the parent's. Resolves to the child's exit code (128 + n for a signal).
+ * stdin and stdout are the parent's, and an IPC channel tells the child when this process dies
+ * (parent-watch.ts). Resolves to the child's exit code (128 + n for a signal).
  */
 function renderInChild(argv: readonly string[]): Promise<number> {
   const script = process.argv[1]!;
   const columns = process.stderr.isTTY ? String(process.stderr.columns ?? 80) : '';
-  const child = spawn(process.execPath, [...process.execArgv, script, ...argv], { stdio: ['inherit', 'inherit', 'pipe'], env: { ...process.env, [CHILD_ENV]: columns } });
+  const child = spawn(process.execPath, [...process.execArgv, script, ...argv], { stdio: ['inherit', 'inherit', 'pipe', 'ipc'], env: { ...process.env, [CHILD_ENV]: columns } });
   const filter = createDawnNoticeFilter((text) => process.stderr.write(text));
   child.stderr!.setEncoding('utf8').on('data', (text: string) => filter.push(text));
   // Ctrl-C reaches the whole process group: the child decides how to end; the parent waits for it.
@@ -98,6 +100,8 @@ function isEntryPoint(): boolean {
 if (isEntryPoint()) {
   const argv = process.argv.slice(2);
   const columns = process.env[CHILD_ENV];
+  // The rendering child ends with its parent (nobody is left to read its output or wait for it).
+  if (columns !== undefined) watchParent(() => process.exit(1));
   const run = columns !== undefined ? main(argv, childStderr(columns)) : renders(argv) ? renderInChild(argv) : main(argv);
   // Exit explicitly: a Dawn device can keep the event loop alive after the work is done.
   run.then(

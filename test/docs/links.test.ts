@@ -1,35 +1,26 @@
-// The documentation's relative links: every link in README.md, docs/*.md and bench/README.md names
-// a file or folder of the repository, and every #anchor a heading of the page it points to (with
-// GitHub's heading ids). And the README's browser quick start is the text of
+// The documentation's links: every relative link in README.md, docs/*.md, demo/README.md and
+// bench/README.md, and every absolute link into the project's own repository, names a file or
+// folder of the repository, and every #anchor a heading of the page it points to (with GitHub's
+// heading ids). And the README's browser quick start is the text of
 // test/bundle/quick-start, which test/bundle/vite-quick-start.test.ts runs in Chromium.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { existsSync, readdirSync, readFileSync, statSync } from 'node:fs';
 import { dirname, join, relative, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
+import { isAbsoluteLink, linkTargets, repositoryPath } from '../../scripts/markdown-links.ts';
 
 const root = resolve(dirname(fileURLToPath(import.meta.url)), '../..');
+const pkg = JSON.parse(readFileSync(join(root, 'package.json'), 'utf8')) as { homepage: string };
+// The repository's own address (package.json's homepage without its #readme): links to files the
+// npm package does not ship (sources, tests) are absolute links there, checked here like relative ones.
+const repository = pkg.homepage.replace(/#.*$/, '');
 const pages = [
   'README.md',
   'bench/README.md',
+  'demo/README.md',
   ...readdirSync(join(root, 'docs')).filter((f) => f.endsWith('.md')).map((f) => `docs/${f}`),
 ];
-
-/** The page without fenced code blocks and inline code spans, where brackets are not links. */
-function prose(markdown: string): string {
-  return markdown
-    .replace(/^(```|~~~)[^\n]*\n[\s\S]*?^\1[^\n]*$/gm, '')
-    .replace(/(`+)[\s\S]*?\1/g, '');
-}
-
-/** Link targets: inline links `[text](target)`, images `![alt](target)` and HTML `src`/`href`. */
-function linkTargets(markdown: string): string[] {
-  const text = prose(markdown);
-  const targets: string[] = [];
-  for (const m of text.matchAll(/\]\(\s*<?([^)\s>]+)>?(?:\s+"[^"]*")?\s*\)/g)) targets.push(m[1]!);
-  for (const m of text.matchAll(/\s(?:src|href)="([^"]+)"/g)) targets.push(m[1]!);
-  return targets;
-}
 
 /** GitHub's ids of a page's headings: lower case, punctuation dropped, spaces to hyphens, repeats numbered. */
 function headingIds(markdown: string): Set<string> {
@@ -46,17 +37,18 @@ function headingIds(markdown: string): Set<string> {
   return ids;
 }
 
-test('every relative link in the README, docs/ and bench/README.md resolves', () => {
+test('every relative link in the README, docs/, demo/ and bench/README.md, and every link into the repository, resolves', () => {
   const broken: string[] = [];
   let checked = 0;
   for (const page of pages) {
     const file = join(root, page);
     const markdown = readFileSync(file, 'utf8');
     for (const target of linkTargets(markdown)) {
-      if (/^[a-z][a-z0-9+.-]*:/i.test(target)) continue; // https:, mailto:, data:
+      const inRepository = repositoryPath(target, repository);
+      if (isAbsoluteLink(target) && inRepository === undefined) continue; // other sites, mailto:, data:
       checked++;
       const [path = '', anchor] = target.split('#', 2) as [string, string | undefined];
-      const resolved = path === '' ? file : resolve(dirname(file), decodeURIComponent(path));
+      const resolved = inRepository !== undefined ? join(root, inRepository) : path === '' ? file : resolve(dirname(file), decodeURIComponent(path));
       if (!resolved.startsWith(root) || !existsSync(resolved)) {
         broken.push(`${page}: ${target} (no ${relative(root, resolved) || resolved})`);
         continue;

@@ -13,7 +13,7 @@ import { fileURLToPath } from 'node:url';
 import { NodeIO } from '@gltf-transform/core';
 import { decode } from 'fast-png';
 import { parseCliArgs } from '../../src/cli/args.ts';
-import type { FarmCommand } from '../../src/cli/farm-args.ts';
+import type { FarmCommand } from '../../src/cli/commands.ts';
 import { runFarmCommand } from '../../src/cli/farm-command.ts';
 import { GpuRendererError } from '../../src/errors/gpu-renderer-error.ts';
 import type { FarmStatus } from '../../src/farm/status.ts';
