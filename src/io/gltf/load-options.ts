@@ -2,7 +2,7 @@
 import { fail, describe } from '../../errors/validate.ts';
 import type { GltfLoadOptions } from './gltf-scene-reader.ts';
 
-const KEYS = ['camera', 'aspectRatio', 'variant', 'scene', 'animation', 'time', 'signal', 'decoders', 'resourcePolicy'];
+const KEYS = ['camera', 'aspectRatio', 'variant', 'scene', 'animation', 'time', 'signal', 'decoders', 'resourcePolicy', 'defaultLighting'];
 
 export function validateGltfLoadOptions(options: unknown): GltfLoadOptions {
   if (options === undefined) return {};
@@ -25,5 +25,6 @@ export function validateGltfLoadOptions(options: unknown): GltfLoadOptions {
     fail('INVALID_OPTION', 'signal', `expected an AbortSignal, got ${describe(o.signal)}`);
   }
   if (o.decoders !== undefined && (typeof o.decoders !== 'object' || o.decoders === null)) fail('INVALID_OPTION', 'decoders', `expected an object of decoder modules, got ${describe(o.decoders)}`);
+  if (o.defaultLighting !== undefined && o.defaultLighting !== 'none' && o.defaultLighting !== 'neutral') fail('INVALID_OPTION', 'defaultLighting', `expected 'none' or 'neutral', got ${describe(o.defaultLighting)}`);
   return o as GltfLoadOptions;
 }
