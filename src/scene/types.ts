@@ -140,7 +140,11 @@ export interface WavefrontSceneObjectInput {
   roughness?: number;
   metallic?: number;
   ior?: number;
-  materialKind?: string;
+  /**
+   * The debug material kind, checked against the fields: 'diffuse' (metallic 0), 'metal' (metallic
+   * 1, the default metallic), 'emissive' (needs emission > 0). See scene-object.ts.
+   */
+  materialKind?: 'diffuse' | 'metal' | 'emissive';
 }
 
 export interface WavefrontCameraInput {
