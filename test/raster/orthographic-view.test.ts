@@ -8,11 +8,12 @@ import assert from 'node:assert/strict';
 import { createRasterRenderer } from '../../src/raster/index.ts';
 import { testDevice } from '../helpers/gpu.ts';
 import { quad } from './scenes.ts';
+import type { WavefrontCameraInput } from '../../src/scene/types.ts';
 
 const size = 32;
 const material = { baseColorFactor: [0, 0, 0, 1], metallicFactor: 0, roughnessFactor: 0.3, ior: 1.5 };
 
-async function render(camera: object): Promise<Uint8Array | Uint8ClampedArray> {
+async function render(camera: WavefrontCameraInput): Promise<ArrayLike<number>> {
   const renderer = await createRasterRenderer({
     device: await testDevice(),
     width: size,
