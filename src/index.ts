@@ -34,7 +34,7 @@ export {
   type NormalizedMesh, type NormalizedScene, type NormalizedSceneObject, type NormalizedTextureRef,
   type SceneBounds, type Vec2Input, type Vec3Input, type Vec4Input, type WavefrontAlphaMode,
   type WavefrontCameraInput, type WavefrontEnvironmentInput, type WavefrontEnvironmentMapReference,
-  type WavefrontImageInput, type WavefrontInstanceInput, type WavefrontLightInput, type WavefrontMagFilter,
+  type WavefrontImageInput, type WavefrontImageLevel, type WavefrontInstanceInput, type WavefrontLightInput, type WavefrontMagFilter,
   type WavefrontMaterialInput, type WavefrontMeshInput, type WavefrontMinFilter,
   type WavefrontPunctualLightInput, type WavefrontSamplerInput, type WavefrontSceneDescription,
   type WavefrontSceneFile, type WavefrontSceneObjectInput, type WavefrontTextureInput,

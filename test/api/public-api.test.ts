@@ -109,7 +109,7 @@ const publicTypes = [
   'WavefrontDenoiser', 'WavefrontDenoiserName', 'WavefrontDenoiseSettings', 'WavefrontDiskLightInput',
   'WavefrontEnvironmentInput', 'WavefrontEnvironmentMapReference', 'WavefrontFeatureFlagResolution',
   'WavefrontFeatureFlagState', 'WavefrontFrameStats', 'WavefrontGeometryUpdate',
-  'WavefrontGeometryUpdateStats', 'WavefrontGpuParallelism', 'WavefrontImageInput', 'WavefrontInstanceInput',
+  'WavefrontGeometryUpdateStats', 'WavefrontGpuParallelism', 'WavefrontImageInput', 'WavefrontImageLevel', 'WavefrontInstanceInput',
   'WavefrontInstanceTransformUpdate', 'WavefrontLightingOptions', 'WavefrontLightInput',
   'WavefrontLightSamplerMode', 'WavefrontMagFilter', 'WavefrontMaterialInput', 'WavefrontMemoryStats',
   'WavefrontMeshAcceleration', 'WavefrontMeshGeometryUpdate', 'WavefrontMeshInput', 'WavefrontMinFilter',
