@@ -90,7 +90,6 @@ export {
   NEUTRAL_DOME_GRADIENT,
   NEUTRAL_FLOOR,
   type NeutralEnvironmentOptions,
-  type NeutralSoftbox,
 } from './neutral-environment.ts';
 export { sceneLightSources, type SceneWithLighting } from './scene-light-sources.ts';
 export { cieOvercastRadiance, studioRadiance, STUDIO_SOFTBOXES, CIE_OVERCAST_ILLUMINANCE_FACTOR, type StudioSoftbox } from './procedural-skies.ts';

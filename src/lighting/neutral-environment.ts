@@ -1,6 +1,7 @@
 import { fail, requireFiniteNumber, requireInteger, describe } from '../errors/validate.ts';
 import type { EnvironmentMap } from './environment-map.ts';
 import { requireKnownKeys } from './known-keys.ts';
+import type { StudioSoftbox } from './procedural-skies.ts';
 
 /**
  * The built-in neutral studio environment: what a scene with no light is lit by where a default is
@@ -11,7 +12,7 @@ import { requireKnownKeys } from './known-keys.ts';
  *
  * Radiance is a function of direction (+Y up, azimuth atan2(z, x) as in equirect.ts):
  * - a grey dome, DOME_HORIZON + DOME_GRADIENT * y above the horizon and FLOOR below;
- * - plus three rectangular softboxes in (azimuth, elevation), added to the dome: a broad key
+ * - plus three rectangular softboxes in (azimuth, elevation) (elevations within [0, 90]), added to the dome: a broad key
  *   front-left, a weaker fill front-right and a rim behind (the front is +Z, where the glTF
  *   loader's framing camera stands).
  * Each texel of the baked map is the exact solid-angle mean of that function over the texel, so
@@ -25,22 +26,14 @@ export const NEUTRAL_DOME_GRADIENT = 0.3;
 /** Radiance below the horizon: a darker grey floor. */
 export const NEUTRAL_FLOOR = 0.25;
 
-/** One rectangular softbox, in angular coordinates. */
-export interface NeutralSoftbox {
-  /** Azimuth range, degrees (atan2(z, x)); `azimuthFrom < azimuthTo`, may pass 180. */
-  azimuthFrom: number;
-  azimuthTo: number;
-  /** Elevation range above the horizon, degrees, within [0, 90]. */
-  elevationFrom: number;
-  elevationTo: number;
-  /** Radiance added to the dome. */
-  radiance: number;
-}
-
-export const NEUTRAL_SOFTBOXES: readonly NeutralSoftbox[] = [
-  { azimuthFrom: 110, azimuthTo: 160, elevationFrom: 17.5, elevationTo: 52.5, radiance: 4 },
-  { azimuthFrom: 15, azimuthTo: 75, elevationFrom: 2.5, elevationTo: 37.5, radiance: 1.5 },
-  { azimuthFrom: 255, azimuthTo: 285, elevationFrom: 25, elevationTo: 65, radiance: 2.5 },
+/**
+ * The softboxes, in the studio preset's angular form (procedural-skies.ts); `luminance` is the
+ * radiance added to the dome (the renderer's radiance unit is the nit).
+ */
+export const NEUTRAL_SOFTBOXES: readonly StudioSoftbox[] = [
+  { azimuthDegrees: 135, elevationDegrees: 35, widthDegrees: 50, heightDegrees: 35, luminance: 4 },
+  { azimuthDegrees: 45, elevationDegrees: 20, widthDegrees: 60, heightDegrees: 35, luminance: 1.5 },
+  { azimuthDegrees: 270, elevationDegrees: 45, widthDegrees: 30, heightDegrees: 40, luminance: 2.5 },
 ];
 
 const RAD = Math.PI / 180;
@@ -53,8 +46,9 @@ export function neutralEnvironmentRadiance(d: readonly number[]): number {
   const elevation = Math.asin(y) / RAD;
   const azimuth = Math.atan2(d[2]!, d[0]!) / RAD;
   for (const box of NEUTRAL_SOFTBOXES) {
-    const inAzimuth = [azimuth, azimuth + 360, azimuth - 360].some((a) => a >= box.azimuthFrom && a < box.azimuthTo);
-    if (inAzimuth && elevation >= box.elevationFrom && elevation < box.elevationTo) l += box.radiance;
+    let da = Math.abs(azimuth - box.azimuthDegrees) % 360;
+    if (da > 180) da = 360 - da;
+    if (da < box.widthDegrees / 2 && Math.abs(elevation - box.elevationDegrees) < box.heightDegrees / 2) l += box.luminance;
   }
   return l;
 }
@@ -65,9 +59,11 @@ function overlap(a0: number, a1: number, b0: number, b1: number): number {
 }
 
 /** Overlap in radians of the azimuth interval [p0, p1] (radians, within [-pi, pi]) with a softbox's, wrapping. */
-function azimuthOverlap(p0: number, p1: number, box: NeutralSoftbox): number {
+function azimuthOverlap(p0: number, p1: number, box: StudioSoftbox): number {
+  const from = (box.azimuthDegrees - box.widthDegrees / 2) * RAD;
+  const to = (box.azimuthDegrees + box.widthDegrees / 2) * RAD;
   let total = 0;
-  for (const shift of [-2 * Math.PI, 0, 2 * Math.PI]) total += overlap(p0, p1, box.azimuthFrom * RAD + shift, box.azimuthTo * RAD + shift);
+  for (const shift of [-2 * Math.PI, 0, 2 * Math.PI]) total += overlap(p0, p1, from + shift, to + shift);
   return total;
 }
 
@@ -85,8 +81,8 @@ function cellIntegral(p0: number, p1: number, t0: number, t1: number): number {
   let sum = dPhi * (NEUTRAL_DOME_HORIZON * (upTop - upBottom) + (NEUTRAL_DOME_GRADIENT * (upTop * upTop - upBottom * upBottom)) / 2);
   sum += dPhi * NEUTRAL_FLOOR * (Math.min(0, c0) - Math.min(0, c1));
   for (const box of NEUTRAL_SOFTBOXES) {
-    const cosOverlap = overlap(c1, c0, Math.sin(box.elevationFrom * RAD), Math.sin(box.elevationTo * RAD));
-    sum += box.radiance * azimuthOverlap(p0, p1, box) * cosOverlap;
+    const cosOverlap = overlap(c1, c0, Math.sin((box.elevationDegrees - box.heightDegrees / 2) * RAD), Math.sin((box.elevationDegrees + box.heightDegrees / 2) * RAD));
+    sum += box.luminance * azimuthOverlap(p0, p1, box) * cosOverlap;
   }
   return sum;
 }
