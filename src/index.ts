@@ -34,7 +34,7 @@ export {
   type NormalizedMesh, type NormalizedScene, type NormalizedSceneObject, type NormalizedTextureRef,
   type SceneBounds, type Vec2Input, type Vec3Input, type Vec4Input, type WavefrontAlphaMode,
   type WavefrontCameraInput, type WavefrontEnvironmentInput, type WavefrontEnvironmentMapReference,
-  type WavefrontImageInput, type WavefrontInstanceInput, type WavefrontLightInput, type WavefrontMagFilter,
+  type WavefrontImageInput, type WavefrontImageLevel, type WavefrontInstanceInput, type WavefrontLightInput, type WavefrontMagFilter,
   type WavefrontMaterialInput, type WavefrontMeshInput, type WavefrontMinFilter,
   type WavefrontPunctualLightInput, type WavefrontSamplerInput, type WavefrontSceneDescription,
   type WavefrontSceneFile, type WavefrontSceneObjectInput, type WavefrontTextureInput,
@@ -55,7 +55,7 @@ export {
 // Lights and environments, with the CPU references the GPU is tested against.
 export {
   areaLightPdf, buildAliasTable, buildEnvironmentSampler, buildLightTree, buildPortalEnvironmentSampler,
-  createEnvironmentLighting, environmentPdf, lightTreePmf, loadEnvironmentMap, luminance,
+  createEnvironmentLighting, createNeutralEnvironment, environmentPdf, lightTreePmf, neutralEnvironmentMeanRadiance, loadEnvironmentMap, luminance,
   portalEnvironmentPdf, punctualLightIncident, sampleAreaLight, sampleEnvironment, sampleLightTree,
   samplePortalEnvironment, validateEnvironmentMap, type AliasTable, type AreaLight, type AreaLightSample,
   type AreaLightType, type EnvironmentLighting, type EnvironmentLightingInput,
@@ -63,7 +63,7 @@ export {
   type EnvironmentPortalInput, type EnvironmentPortalMode, type EnvironmentSample, type EnvironmentSampler,
   type ExrLoaderConstructor, type ExrLoaderLike, type LightBounds, type LightingConfig,
   type LightingEnvironment, type LightTree, type LightTreeItem, type LightTreeNode, type LightTreeSample,
-  type LoadEnvironmentMapOptions, type NegativeTexelReport, type Portal, type PortalEnvironmentSample,
+  type LoadEnvironmentMapOptions, type NegativeTexelReport, type NeutralEnvironmentOptions, type Portal, type PortalEnvironmentSample,
   type PortalEnvironmentSampler, type PunctualIncident, type PunctualLight, type PunctualLightType,
   type SunLight, type WavefrontAreaLightInput, type WavefrontDiskLightInput, type WavefrontLightingOptions,
   type WavefrontLightSamplerMode, type WavefrontRectangleLightInput, type WavefrontSceneLightInput,

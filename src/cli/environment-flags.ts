@@ -1,21 +1,34 @@
 /**
  * `--env`, `--env-intensity`, `--env-rotation` and `--negative-texels`: the environment map the CLI
- * renders with.
+ * renders with (`--env none`: no environment at all).
  */
 import { GpuRendererError } from '../errors/gpu-renderer-error.ts';
 import { readByteSource, resolveResourcePolicy, type ResourcePolicy } from '../io/resource-policy.ts';
 import type { EnvironmentMapInput } from '../lighting/environment-map.ts';
+import type { EnvironmentLightingInput } from '../lighting/environment-lighting.ts';
 import { loadEnvironmentMap, type EnvironmentMapSource, type NegativeTexelReport } from '../lighting/load-environment-map.ts';
 import type { WavefrontSceneDescription } from '../scene/types.ts';
 import type { RenderCommand } from './args.ts';
 
-type SceneWithMap = WavefrontSceneDescription & { environmentMap?: EnvironmentMapInput };
+export type SceneWithMap = WavefrontSceneDescription & { environmentMap?: EnvironmentMapInput; environmentLighting?: EnvironmentLightingInput };
+
+/** `--env none`: render with no environment, not even the scene's own or the built-in default. */
+export const ENV_NONE = 'none';
 
 /** What zeroing negative texels changed, as the CLI reports it (nothing when nothing changed). */
 export function negativeTexelNote(field: string, report: NegativeTexelReport): string | undefined {
   if (report.channels === 0) return undefined;
   const percent = 100 * report.addedEnergyFraction;
   return `${field}: ${report.channels} negative channel values (lossy EXR ringing) set to 0, adding ${percent.toPrecision(2)} % to the map's energy (--negative-texels error refuses such maps)`;
+}
+
+/** The scene without any environment (colour, map or sky). */
+function withoutEnvironment(scene: SceneWithMap): SceneWithMap {
+  const rest: SceneWithMap = { ...scene };
+  delete rest.environment;
+  delete rest.environmentMap;
+  delete rest.environmentLighting;
+  return rest;
 }
 
 /**
@@ -37,7 +50,7 @@ async function environmentSource(path: string, resourcePolicy: ResourcePolicy | 
 /**
  * Replaces the scene's environment with `--env`'s map (a Radiance .hdr or OpenEXR file, or a
  * module exporting one as a data: URL; read and validated by loadEnvironmentMap: errors are
- * INVALID_ENVIRONMENT naming `--env`), and applies `--env-intensity` / `--env-rotation` (degrees)
+ * INVALID_ENVIRONMENT naming `--env`; `--env none` removes the scene's environment), and applies `--env-intensity` / `--env-rotation` (degrees)
  * to whichever map lights the scene; they need one. `note` receives what `--negative-texels zero`
  * changed; `resourcePolicy` bounds the read (the CLI's: see render-command.ts).
  */
@@ -48,7 +61,10 @@ export async function applyEnvironmentFlags(
   resourcePolicy?: ResourcePolicy,
 ): Promise<SceneWithMap> {
   let map = scene.environmentMap;
-  if (command.env !== undefined) {
+  if (command.env === ENV_NONE) {
+    scene = withoutEnvironment(scene);
+    map = undefined;
+  } else if (command.env !== undefined) {
     const negativeTexels = command.negativeTexels ?? 'zero';
     map = await loadEnvironmentMap(await environmentSource(command.env, resourcePolicy), {
       field: '--env',
@@ -67,10 +83,8 @@ export async function applyEnvironmentFlags(
     return scene;
   }
   // The map replaces the scene's uniform environment colour.
-  const rest: SceneWithMap = { ...scene };
-  delete rest.environment;
   return {
-    ...rest,
+    ...withoutEnvironment(scene),
     environmentMap: {
       ...map,
       ...(command.envIntensity !== undefined ? { intensity: command.envIntensity } : {}),

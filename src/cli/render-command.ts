@@ -12,7 +12,8 @@ import type { EnvironmentMapInput } from '../lighting/environment-map.ts';
 import type { GltfScene } from '../io/gltf/gltf-scene-reader.ts';
 import type { GltfAnimationInfo } from '../io/gltf/posing.ts';
 import { applyCameraFlags } from './camera-flags.ts';
-import { applyEnvironmentFlags, negativeTexelNote } from './environment-flags.ts';
+import { negativeTexelNote } from './environment-flags.ts';
+import { applyCliLighting } from './scene-lighting.ts';
 import { encodePng } from '../io/images/png.ts';
 import { encodeImageFile } from '../io/images/image-file.ts';
 import type { WavefrontAovName } from '../film/aovs.ts';
@@ -237,7 +238,7 @@ export async function runRenderCommand(command: RenderCommand, io: { stderr: Pro
     negativeTexels: command.negativeTexels,
     resourcePolicy,
   });
-  const lit = await applyEnvironmentFlags(loaded, command, (text) => io.stderr.write(`note: ${text}\n`), resourcePolicy);
+  const { scene: lit, lighting } = await applyCliLighting(loaded, command, (text) => io.stderr.write(`note: ${text}\n`), resourcePolicy);
   const scene = applyCameraFlags(lit, command);
   const renderer: WavefrontPathTracingRenderer = await createWavefrontPathTracingComputeRenderer({ ...rendererSettings(command), ...scene });
   try {
@@ -270,6 +271,7 @@ export async function runRenderCommand(command: RenderCommand, io: { stderr: Pro
       raysPerSecond: (steady ? stats.rays : stats.firstRays) / rateSeconds,
       invalidSamples: stats.invalidSamples,
       adapter: renderer.getSnapshot().adapter,
+      lighting,
       out: command.out,
     };
   } finally {

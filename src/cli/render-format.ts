@@ -31,6 +31,8 @@ export interface RenderSummary {
   raysPerSecond: number;
   invalidSamples: number;
   adapter: string;
+  /** What lit the scene, as a sentence ("lit by the scene's 2 punctual lights"); see scene-lighting.ts. */
+  lighting?: string;
   out: string;
 }
 
@@ -61,6 +63,7 @@ export function formatSummary(s: RenderSummary): string {
     ...(s.firstFrameSeconds !== undefined
       ? [`  first frame (${s.firstFrameSamplesPerPixel ?? '?'} spp, with shader compilation) ${formatDuration(s.firstFrameSeconds)}, before the clock: not in the rendering time, rates or --time`]
       : []),
+    ...(s.lighting !== undefined ? [`  ${s.lighting}`] : []),
     `  adapter: ${s.adapter}${s.invalidSamples > 0 ? `; ${s.invalidSamples} invalid samples dropped` : ''}`,
   ].join('\n');
 }

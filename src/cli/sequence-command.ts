@@ -11,7 +11,7 @@ import { outputPaths } from '../sequence/output-pattern.ts';
 import { createSequenceRenderer } from '../sequence/sequence-renderer.ts';
 import type { RenderCommand } from './args.ts';
 import { applyCameraFlags } from './camera-flags.ts';
-import { applyEnvironmentFlags } from './environment-flags.ts';
+import { applyCliLighting } from './scene-lighting.ts';
 import { createProgressBar, formatDuration, type ProgressStream } from './progress.ts';
 import { accumulateImage, commandResourcePolicy, encodeOutput, loadGltfForCommand, rendererSettings, withCliFlag } from './render-command.ts';
 
@@ -34,6 +34,8 @@ export interface SequenceSummary {
   renderers: number;
   invalidSamples: number;
   adapter: string;
+  /** What lit the frames, as a sentence (scene-lighting.ts). */
+  lighting: string;
   /** Written files, in sequence order. */
   files: string[];
 }
@@ -65,10 +67,12 @@ export async function runSequenceCommand(command: RenderCommand, io: { stderr: P
   for (let i = 0; i < items.length; i++) if (command.overwrite || !(await frameFileExists(paths[i]!))) todo.push(i);
   let skipped = items.length - todo.length;
   if (skipped > 0) io.stderr.write(`sequence: ${skipped} of ${items.length} frames already on disk, skipped (--overwrite renders them again)\n`);
-  const lighting = await applyEnvironmentFlags({}, command, (text) => io.stderr.write(`note: ${text}\n`), resourcePolicy);
+  // The asset's lights and materials are the same in every pose, so one choice holds for every frame.
+  const { scene: lit, lighting } = await applyCliLighting({ ...gltf }, command, (text) => io.stderr.write(`note: ${text}\n`), resourcePolicy);
+  const environment = lit.environmentMap !== undefined ? { environmentMap: lit.environmentMap } : {};
   // --orbit / --camera-position: one camera for every frame, placed around the loaded pose's bounds.
   const placed = command.orbit !== undefined || command.cameraPosition !== undefined ? applyCameraFlags({ ...gltf }, command).camera : undefined;
-  const sequence = createSequenceRenderer({ ...rendererSettings(command), ...lighting, ...(io.device ? { device: io.device } : {}) });
+  const sequence = createSequenceRenderer({ ...rendererSettings(command), ...environment, ...(io.device ? { device: io.device } : {}) });
   const progress = createProgressBar(io.stderr, 'sequence');
   const files: string[] = [];
   let renderMs = 0;
@@ -114,6 +118,7 @@ export async function runSequenceCommand(command: RenderCommand, io: { stderr: P
     renderers: sequence.created,
     invalidSamples,
     adapter,
+    lighting,
     files,
   };
 }
@@ -123,6 +128,7 @@ export function formatSequenceSummary(s: SequenceSummary): string {
   return [
     `wrote ${s.written} of ${s.frames} frames to ${s.out} (${s.width}x${s.height})${s.skipped > 0 ? `; ${s.skipped} already on disk, skipped (--overwrite renders them again)` : ''}`,
     `  ${formatDuration(s.renderSeconds)} rendering${perFrame}, ${formatDuration(s.totalSeconds)} total; ${s.renderers === 1 ? 'one path tracer updated in place' : `${s.renderers} path tracers`}`,
+    `  ${s.lighting}`,
     `  adapter: ${s.adapter || 'none used'}${s.invalidSamples > 0 ? `; ${s.invalidSamples} invalid samples dropped` : ''}`,
   ].join('\n');
 }

@@ -15,7 +15,7 @@ import type * as BullMQ from 'bullmq';
 import type { ProgressStream } from '../cli/progress.ts';
 import { accumulateImage, commandResourcePolicy, encodeOutput, loadGltfForCommand, rendererSettings } from '../cli/render-command.ts';
 import { applyCameraFlags } from '../cli/camera-flags.ts';
-import { applyEnvironmentFlags } from '../cli/environment-flags.ts';
+import { applyCliLighting } from '../cli/scene-lighting.ts';
 import type { WavefrontCameraInput } from '../scene/types.ts';
 import type { GltfScene } from '../io/gltf/gltf-scene-reader.ts';
 import { frameFileExists, writeFrameFile } from '../io/frame-files.ts';
@@ -81,11 +81,12 @@ export async function runFarmWorker(options: FarmWorkerOptions = {}): Promise<Fa
     cached = null;
     const resourcePolicy = commandResourcePolicy(render);
     const gltf = await loadGltfForCommand(render.scenePath!, { camera: render.camera, variant: render.variant, animation: render.animation, at: render.at, aspectRatio: render.width / render.height, resourcePolicy, ...(options.log ? { stderr: options.log } : {}) });
-    const lighting = await applyEnvironmentFlags({}, render, (text) => log(`note: ${text}`), resourcePolicy);
+    const { scene: lit, lighting } = await applyCliLighting({ ...gltf }, render, (text) => log(`note: ${text}`), resourcePolicy);
+    const environment = lit.environmentMap !== undefined ? { environmentMap: lit.environmentMap } : {};
     const placed = render.orbit !== undefined || render.cameraPosition !== undefined ? applyCameraFlags({ ...gltf }, render).camera : undefined;
     summary.assetsLoaded += 1;
-    log(`loaded ${render.scenePath}`);
-    cached = { key, gltf, placed, sequence: createSequenceRenderer({ ...settings, ...lighting }) };
+    log(`loaded ${render.scenePath}; ${lighting}`);
+    cached = { key, gltf, placed, sequence: createSequenceRenderer({ ...settings, ...environment }) };
     return cached;
   };
 

@@ -81,6 +81,17 @@ export {
 export { createHosekWilkieSky, hosekWilkieRadiance, type HosekWilkieSky } from './hosek-wilkie.ts';
 export { solarDiscRadiance, relativeAirMass, cieXyzMatching, planckRadiance, xyzToLinearSrgb, LUMENS_PER_WATT, SOLAR_BLACKBODY_KELVIN } from './solar-radiance.ts';
 export { sampleSun, sunPdf, sunRadiance, sunSolidAngle, sunLightLayout, oneMinusCos, type SunLight, type SunSample } from './sun-light.ts';
+export {
+  createNeutralEnvironment,
+  neutralEnvironmentRadiance,
+  neutralEnvironmentMeanRadiance,
+  NEUTRAL_SOFTBOXES,
+  NEUTRAL_DOME_HORIZON,
+  NEUTRAL_DOME_GRADIENT,
+  NEUTRAL_FLOOR,
+  type NeutralEnvironmentOptions,
+} from './neutral-environment.ts';
+export { sceneLightSources, type SceneWithLighting } from './scene-light-sources.ts';
 export { cieOvercastRadiance, studioRadiance, STUDIO_SOFTBOXES, CIE_OVERCAST_ILLUMINANCE_FACTOR, type StudioSoftbox } from './procedural-skies.ts';
 export {
   createEnvironmentLighting,

@@ -48,6 +48,11 @@ export function cameraViewProjection(camera: RasterCamera, aspect: number, cente
   return mat4.multiply(projection, view) as Float32Array;
 }
 
+/** Unit vector from the target towards the eye: where an orthographic camera's fragments are seen from. */
+export function towardsViewer(camera: RasterCamera): Float32Array {
+  return vec3.normalize(vec3.sub(camera.position, camera.target)) as Float32Array;
+}
+
 /** World -> light clip for the shadow map: an orthographic box around the focus sphere (directional) or the spot cone. */
 export function lightViewProjection(light: PunctualLight, center: readonly number[], radius: number): Float32Array {
   const r = Math.max(radius, 1e-3);

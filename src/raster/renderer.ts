@@ -18,7 +18,7 @@ import { readTexturePixels } from '../runtime/read-pixels.ts';
 import { createCanvasTarget, createOffscreenTarget, resolveCanvas, type RenderTarget } from '../runtime/render-target.ts';
 import type { GpuRendererFormat } from '../runtime/renderer-types.ts';
 import { toneMappingModeIds } from '../film/tone-mapping.ts';
-import { cameraViewProjection, lightViewProjection, validateRasterCamera, type RasterCamera } from './camera-matrices.ts';
+import { cameraViewProjection, lightViewProjection, towardsViewer, validateRasterCamera, type RasterCamera } from './camera-matrices.ts';
 import { computeBrdfLut, createConstantEnvironment, createMapEnvironment, type RasterEnvironment } from './gpu/environment.ts';
 import { uploadMeshStreams, type GpuMeshStreams } from './gpu/geometry.ts';
 import { createGpuMaterial, type GpuRasterMaterial } from './gpu/materials.ts';
@@ -258,6 +258,8 @@ export async function createRasterRenderer(options: RasterRendererOptions): Prom
       viewportSize: [width, height],
       outputSrgb: 1,
       frameIndex: frame,
+      viewDirection: towardsViewer(cam),
+      orthographic: cam.type === 'orthographic' ? 1 : 0,
     };
     for (let c = 0; c < 4; c++) {
       values[`viewProj${c}`] = viewProj.subarray(4 * c, 4 * c + 4);

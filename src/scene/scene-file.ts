@@ -9,6 +9,7 @@ import { GpuRendererError } from '../errors/gpu-renderer-error.ts';
 import { describe } from '../errors/validate.ts';
 import { anyMaterialExtensions } from '../materials/extensions/index.ts';
 import { parseGltfReferences, type GltfSceneReference } from './gltf-references.ts';
+import { sceneObjectMaterialKinds, type SceneObjectMaterialKind } from './scene-object.ts';
 import type {
   WavefrontCameraInput,
   WavefrontEnvironmentInput,
@@ -333,7 +334,10 @@ function validate(value: unknown, r: SceneFileReader): WavefrontSceneFile {
       roughness: unit,
       metallic: unit,
       ior: (x, g) => r.number(x, g),
-      materialKind: (x, g) => r.string(x, g),
+      materialKind: (x, g) => {
+        if (!sceneObjectMaterialKinds.includes(x as SceneObjectMaterialKind)) r.fail(g, `expected one of ${sceneObjectMaterialKinds.join(', ')}, got ${describe(x)}`);
+        return x as SceneObjectMaterialKind;
+      },
     });
   };
 

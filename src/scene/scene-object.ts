@@ -3,6 +3,28 @@ import { maxRadiance } from './limits.ts';
 import type { NormalizedMaterial } from './material.ts';
 import type { WavefrontSceneObjectInput } from './types.ts';
 
+/**
+ * `materialKind`: which debug material the object is, checked against its fields and setting the
+ * defaults they leave open. 'diffuse': a dielectric base (metallic 0); 'metal': a conductor
+ * (metallic 1); 'emissive': an emitter (needs `emission` with radiance > 0). Without a kind every
+ * field keeps its own default.
+ */
+export const sceneObjectMaterialKinds = ['diffuse', 'metal', 'emissive'] as const;
+export type SceneObjectMaterialKind = (typeof sceneObjectMaterialKinds)[number];
+
+/** The metallic factor: the field if given (it must agree with the kind), else the kind's. */
+function metallicOf(input: WavefrontSceneObjectInput, field: string, code: 'INVALID_SCENE_OBJECT'): number {
+  const kind = input.materialKind;
+  if (kind !== undefined && !sceneObjectMaterialKinds.includes(kind)) {
+    fail(code, `${field}.materialKind`, `expected one of ${sceneObjectMaterialKinds.join(', ')}, got ${JSON.stringify(kind)}`);
+  }
+  const pinned = kind === 'metal' ? 1 : kind === 'diffuse' ? 0 : undefined;
+  if (input.metallic === undefined) return pinned ?? 0;
+  const metallic = requireNumberInRange(input.metallic, `${field}.metallic`, { min: 0, max: 1 }, code);
+  if (pinned !== undefined && metallic !== pinned) fail(code, `${field}.metallic`, `is ${metallic}, but materialKind '${kind}' means metallic ${pinned}`);
+  return metallic;
+}
+
 /** An analytic debug fixture: a sphere or an axis-aligned box with its own material. */
 export interface NormalizedSceneObject {
   type: 'sphere' | 'box';
@@ -28,10 +50,12 @@ export function normalizeWavefrontSceneObject(input: WavefrontSceneObjectInput, 
       if (!(c <= maxRadiance)) fail(code, `${field}.emission`, `emitted radiance ${c} in channel ${i} exceeds the supported maximum ${maxRadiance}`);
     });
   }
+  const metallic = metallicOf(input, field, code);
+  if (input.materialKind === 'emissive' && !emission.some((c) => c > 0)) fail(code, `${field}.emission`, "materialKind 'emissive' needs emission with radiance > 0");
   const material: NormalizedMaterial = {
     baseColor: [colorIn[0]!, colorIn[1]!, colorIn[2]!, 1],
     emission,
-    metallic: input.metallic === undefined ? 0 : requireNumberInRange(input.metallic, `${field}.metallic`, { min: 0, max: 1 }, code),
+    metallic,
     roughness: input.roughness === undefined ? 1 : requireNumberInRange(input.roughness, `${field}.roughness`, { min: 0, max: 1 }, code),
     ior: input.ior === undefined ? 1.5 : requireNumberInRange(input.ior, `${field}.ior`, { min: 1, max: 10 }, code),
     doubleSided: true,

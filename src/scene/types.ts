@@ -46,6 +46,20 @@ export interface WavefrontImageInput {
   width: number;
   height: number;
   data: Uint8Array | Uint8ClampedArray;
+  /**
+   * Mip levels 1, 2, ... as a file stores them (a KTX2 file's mip chain), each of WebGPU's size for
+   * its level (max(1, floor(size / 2^k))), RGBA8 in the same encoding as `data`. Where a sampler
+   * reads mipmaps they are used as they are; levels below the last one given are filtered from
+   * `data`. Default: every level filtered from `data`.
+   */
+  mipLevels?: readonly WavefrontImageLevel[];
+}
+
+/** One stored mip level of an image. */
+export interface WavefrontImageLevel {
+  width: number;
+  height: number;
+  data: Uint8Array | Uint8ClampedArray;
 }
 
 export interface WavefrontTextureInput {
@@ -140,7 +154,11 @@ export interface WavefrontSceneObjectInput {
   roughness?: number;
   metallic?: number;
   ior?: number;
-  materialKind?: string;
+  /**
+   * The debug material kind, checked against the fields: 'diffuse' (metallic 0), 'metal' (metallic
+   * 1, the default metallic), 'emissive' (needs emission > 0). See scene-object.ts.
+   */
+  materialKind?: 'diffuse' | 'metal' | 'emissive';
 }
 
 export interface WavefrontCameraInput {

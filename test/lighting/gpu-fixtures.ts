@@ -1,5 +1,6 @@
 // Shared fixtures for the GPU lighting tests: test HDRIs, the lights heap and uniforms of
 // buildGpuLighting uploaded as the bindings the lighting WGSL reads, and quadrature of maps.
+import assert from 'node:assert/strict';
 import { buildGpuLighting, type GpuLighting, type GpuLightingInput } from '../../src/lighting/gpu-lighting.ts';
 import type { LightingConfig } from '../../src/lighting/lighting-options.ts';
 import { environmentRadiance, type EnvironmentMap } from '../../src/lighting/environment-map.ts';
@@ -83,6 +84,56 @@ export function mapIrradiance(map: EnvironmentMap, normals: Float64Array, sub = 
     }
   }
   return e;
+}
+
+/**
+ * A Lambertian unit sphere at the origin of albedo `albedo`, seen by an orthographic camera looking
+ * down -Z with view height 2 `half` in a `size` x `size` image, under `map` alone: every pixel wholly
+ * on the sphere must be albedo / pi x the irradiance at its normals (the mean over 4 x 4 points of
+ * the pixel, from CPU quadrature of the map): over the whole disk within `meanTolerance`, over each
+ * 16 x 16 pixel block within `blockTolerance` (relative).
+ */
+export function assertSphereMatchesIrradiance(
+  image: Float32Array,
+  map: EnvironmentMap,
+  o: { size: number; half: number; albedo: number; meanTolerance: number; blockTolerance: number },
+): void {
+  const { size, half } = o;
+  const SUB = 4;
+  const pixels: number[] = [];
+  const normals: number[] = [];
+  for (let y = 0; y < size; y++) {
+    for (let x = 0; x < size; x++) {
+      const corners = [0, 1].flatMap((a) => [0, 1].map((b) => [((x + a) / size) * 2 * half - half, half - ((y + b) / size) * 2 * half]));
+      if (!corners.every(([px, py]) => px! * px! + py! * py! < 0.95)) continue;
+      pixels.push(y * size + x);
+      for (let k = 0; k < SUB * SUB; k++) {
+        const px = ((x + ((k % SUB) + 0.5) / SUB) / size) * 2 * half - half;
+        const py = half - ((y + (Math.floor(k / SUB) + 0.5) / SUB) / size) * 2 * half;
+        normals.push(px, py, Math.sqrt(1 - px * px - py * py));
+      }
+    }
+  }
+  const e = mapIrradiance(map, Float64Array.from(normals), 2);
+  let got = 0;
+  let want = 0;
+  const blocks = new Map<number, { got: number; want: number }>();
+  pixels.forEach((p, k) => {
+    for (let c = 0; c < 3; c++) {
+      let expect = 0;
+      for (let q = 0; q < SUB * SUB; q++) expect += ((o.albedo / Math.PI) * e[3 * (SUB * SUB * k + q) + c]!) / (SUB * SUB);
+      got += image[4 * p + c]!;
+      want += expect;
+      const key = 100 * Math.floor((p % size) / 16) + Math.floor(p / size / 16);
+      const b = blocks.get(key) ?? { got: 0, want: 0 };
+      b.got += image[4 * p + c]!;
+      b.want += expect;
+      blocks.set(key, b);
+    }
+  });
+  assert.ok(pixels.length > 400);
+  assert.ok(Math.abs(got - want) < o.meanTolerance * want, `mean over the sphere: ${got / pixels.length / 3} vs ${want / pixels.length / 3}`);
+  for (const [key, b] of blocks) assert.ok(Math.abs(b.got - b.want) < o.blockTolerance * b.want, `block ${key}: ${b.got} vs ${b.want}`);
 }
 
 /** The map's texels as the `environmentMap` option takes them. */

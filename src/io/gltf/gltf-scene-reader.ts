@@ -27,6 +27,9 @@ import { flattenNodes } from './node-flattening.ts';
 import { chooseAnimation, needsRig, poseRig, poseTime, readRig, type GltfAnimationInfo, type GltfPoseOptions, type GltfRig } from './posing.ts';
 import { withMikkTSpaceTangents } from './tangents.ts';
 import { TextureTable } from './textures.ts';
+import type { EnvironmentMap } from '../../lighting/environment-map.ts';
+import { createNeutralEnvironment } from '../../lighting/neutral-environment.ts';
+import { sceneLightSources } from '../../lighting/scene-light-sources.ts';
 import { listVariants, selectVariant, variantMaterial } from './variants.ts';
 import { validateGltfLoadOptions, type GltfLoadOptions } from './load-options.ts';
 import { acceptScene, type SceneOrigins } from './scene-acceptance.ts';
@@ -60,6 +63,8 @@ export interface GltfScene {
   images: WavefrontImageInput[];
   camera: WavefrontCameraInput;
   lights: WavefrontPunctualLightInput[];
+  /** The built-in neutral environment, with `defaultLighting: 'neutral'` where the asset has no light. */
+  environmentMap?: EnvironmentMap;
   /** Non-enumerable. Things skipped, converted or dropped (points and lines, unsupported optional extensions, ...). */
   readonly warnings: readonly string[];
   /** Non-enumerable. Every camera placed in the scene, in node order. */
@@ -192,6 +197,8 @@ interface LoadedAsset {
   warnings: string[];
   /** Unskinned mesh entries of the latest pose, reused by the next one when mesh, weights and variant match. */
   meshCache: Map<string, CachedMesh>;
+  /** The neutral environment of `defaultLighting: 'neutral'`, baked once for every pose. */
+  neutralEnvironment?: EnvironmentMap;
 }
 
 interface CachedMesh {
@@ -347,7 +354,8 @@ async function poseAsset(asset: LoadedAsset, options: GltfLoadOptions): Promise<
   const camera = chooseCamera(cameras, options.camera, bounds, options.aspectRatio);
   signal?.throwIfAborted();
 
-  const scene = { meshes, instances, materials, textures: asset.table.textures, images: asset.table.images, camera, lights };
+  const scene: Pick<GltfScene, 'meshes' | 'instances' | 'materials' | 'textures' | 'images' | 'camera' | 'lights' | 'environmentMap'> = { meshes, instances, materials, textures: asset.table.textures, images: asset.table.images, camera, lights };
+  if (options.defaultLighting === 'neutral' && sceneLightSources(scene).length === 0) scene.environmentMap = (asset.neutralEnvironment ??= createNeutralEnvironment());
   const chosen = cameras.find((c) => c.camera === camera);
   acceptScene(scene, origins, [{ camera, at: chosen === undefined ? '' : pointer('nodes', chosen.nodeIndex) }]);
   const poseAgain = (next: GltfPoseAgainOptions = {}): Promise<GltfScene> => {

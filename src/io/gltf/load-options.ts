@@ -26,9 +26,15 @@ export interface GltfLoadOptions extends GltfPoseOptions {
    * references stay in the asset's folder, no other origin is fetched, 2 GiB are decoded at most.
    */
   resourcePolicy?: ResourcePolicy;
+  /**
+   * What lights an asset with no light of its own (no KHR_lights_punctual light, no emissive
+   * material): 'none' (default: nothing, the image is black) or 'neutral', the built-in neutral
+   * studio environment (`createNeutralEnvironment()`), returned as the scene's `environmentMap`.
+   */
+  defaultLighting?: 'none' | 'neutral';
 }
 
-const KEYS = ['camera', 'aspectRatio', 'variant', 'scene', 'animation', 'time', 'signal', 'decoders', 'resourcePolicy'];
+const KEYS = ['camera', 'aspectRatio', 'variant', 'scene', 'animation', 'time', 'signal', 'decoders', 'resourcePolicy', 'defaultLighting'];
 
 export function validateGltfLoadOptions(options: unknown): GltfLoadOptions {
   if (options === undefined) return {};
@@ -51,5 +57,6 @@ export function validateGltfLoadOptions(options: unknown): GltfLoadOptions {
     fail('INVALID_OPTION', 'signal', `expected an AbortSignal, got ${describe(o.signal)}`);
   }
   if (o.decoders !== undefined && (typeof o.decoders !== 'object' || o.decoders === null)) fail('INVALID_OPTION', 'decoders', `expected an object of decoder modules, got ${describe(o.decoders)}`);
+  if (o.defaultLighting !== undefined && o.defaultLighting !== 'none' && o.defaultLighting !== 'neutral') fail('INVALID_OPTION', 'defaultLighting', `expected 'none' or 'neutral', got ${describe(o.defaultLighting)}`);
   return o as GltfLoadOptions;
 }

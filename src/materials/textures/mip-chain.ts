@@ -20,6 +20,8 @@ export interface Rgba8Image {
   readonly height: number;
   /** RGBA8, row-major, top row first. */
   readonly data: Uint8Array;
+  /** Levels 1, 2, ... the image's file stores (validated sizes); see WavefrontImageInput.mipLevels. */
+  readonly mipLevels?: readonly Rgba8Image[];
 }
 
 const byteToUnit = Float64Array.from({ length: 256 }, (_, i) => i / 255);
@@ -159,6 +161,17 @@ export function generateMipChain(image: Rgba8Image, encoding: TexelEncoding, lev
   const sizes: [number, number][] = [];
   for (let k = 1; k < levels; k++) sizes.push(mipLevelSize(image.width, image.height, k));
   return [image.data, ...areaResample(image, sizes, encoding)];
+}
+
+/**
+ * The mip chain of `image`: the levels its file stores (`mipLevels`), as the file's author filtered
+ * them, then levels filtered from level 0 for the rest of the `levels` asked for.
+ */
+export function imageMipChain(image: Rgba8Image, encoding: TexelEncoding, levels: number): Uint8Array[] {
+  const stored = (image.mipLevels ?? []).slice(0, levels - 1).map((level) => level.data);
+  const sizes: [number, number][] = [];
+  for (let k = 1 + stored.length; k < levels; k++) sizes.push(mipLevelSize(image.width, image.height, k));
+  return [image.data, ...stored, ...areaResample(image, sizes, encoding)];
 }
 
 /** `image` shrunk to `width` x `height` by the same footprint mean. */

@@ -17,7 +17,7 @@ import type { Vec4Heap } from '../../gpu-layout/vec4-heap.ts';
 import type { WavefrontImageInput, WavefrontTextureInput } from '../../scene/types.ts';
 import { fullMipCount, mipChainLayout } from './atlas-layout.ts';
 import { fitTextureToLimit, packAtlas, type AtlasLimits } from './atlas-packer.ts';
-import { downscaleImage, generateMipChain, type Rgba8Image, type TexelEncoding } from './mip-chain.ts';
+import { downscaleImage, imageMipChain, type Rgba8Image, type TexelEncoding } from './mip-chain.ts';
 import { samplerBits, samplerUsesMipmaps } from './sampler-state.ts';
 import { validateTextures } from './texture-input.ts';
 
@@ -167,7 +167,7 @@ export function buildTextureAtlas(
     const place = packing.placements[i]!;
     const encoding: TexelEncoding = b.encoding === 'raw' ? 'linear' : b.encoding;
     const base = b.width === b.source.width && b.height === b.source.height ? b.source : downscaleImage(b.source, b.width, b.height, encoding);
-    const levels = generateMipChain(base, encoding, b.levels);
+    const levels = imageMipChain(base, encoding, b.levels);
     layouts[i]!.levels.forEach((rect, k) => {
       const texels = levels[k]!;
       const layer = layers[place.layer]!;

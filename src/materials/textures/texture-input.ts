@@ -5,6 +5,7 @@
  */
 import { describe, fail, isArrayLike } from '../../errors/validate.ts';
 import type { WavefrontImageInput, WavefrontTextureInput } from '../../scene/types.ts';
+import { fullMipCount, mipLevelSize } from './atlas-layout.ts';
 import type { Rgba8Image } from './mip-chain.ts';
 import { resolveSampler, type ResolvedSampler } from './sampler-state.ts';
 
@@ -29,8 +30,9 @@ export function validateImage(input: unknown, field: string): Rgba8Image {
   const expected = w * h * 4;
   if (!isArrayLike(data)) fail('INVALID_TEXTURE', `${field}.data`, `expected RGBA8 texels (a Uint8Array), got ${describe(data)}`);
   if (data.length !== expected) fail('INVALID_TEXTURE', `${field}.data`, `expected ${w} x ${h} x 4 = ${expected} bytes, got ${data.length}`);
+  const mipLevels = validateMipLevels((input as Partial<WavefrontImageInput>).mipLevels, w, h, `${field}.mipLevels`);
   if (data instanceof Uint8Array || data instanceof Uint8ClampedArray) {
-    return { width: w, height: h, data: new Uint8Array(data.buffer, data.byteOffset, data.byteLength) };
+    return { width: w, height: h, data: new Uint8Array(data.buffer, data.byteOffset, data.byteLength), ...(mipLevels ? { mipLevels } : {}) };
   }
   const bytes = new Uint8Array(expected);
   for (let i = 0; i < expected; i++) {
@@ -38,7 +40,22 @@ export function validateImage(input: unknown, field: string): Rgba8Image {
     if (typeof v !== 'number' || !Number.isInteger(v) || v < 0 || v > 255) fail('INVALID_TEXTURE', `${field}.data[${i}]`, `expected a byte (integer 0..255), got ${describe(v)}`);
     bytes[i] = v;
   }
-  return { width: w, height: h, data: bytes };
+  return { width: w, height: h, data: bytes, ...(mipLevels ? { mipLevels } : {}) };
+}
+
+/** Stored mip levels 1, 2, ...: each of its level's size (atlas-layout.ts mipLevelSize), at most down to 1 x 1. */
+function validateMipLevels(input: unknown, width: number, height: number, field: string): Rgba8Image[] | undefined {
+  if (input === undefined) return undefined;
+  if (!Array.isArray(input)) fail('INVALID_TEXTURE', field, `expected an array of images, got ${describe(input)}`);
+  const most = fullMipCount(width, height) - 1;
+  if (input.length > most) fail('INVALID_TEXTURE', field, `a ${width} x ${height} image has ${most} levels below level 0, got ${input.length}`);
+  return input.map((level: unknown, k) => {
+    const image = validateImage(level, `${field}[${k}]`);
+    const [w, h] = mipLevelSize(width, height, k + 1);
+    if (image.width !== w || image.height !== h) fail('INVALID_TEXTURE', `${field}[${k}]`, `level ${k + 1} of a ${width} x ${height} image is ${w} x ${h}, got ${image.width} x ${image.height}`);
+    if (image.mipLevels !== undefined) fail('INVALID_TEXTURE', `${field}[${k}].mipLevels`, 'a mip level has no levels of its own');
+    return image;
+  });
 }
 
 /** Validates every image and texture (used or not); texture i of the result is textures[i]. */

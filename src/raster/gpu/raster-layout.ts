@@ -30,6 +30,8 @@ export const rasterFrameLayout: StructLayout = defineStructLayout('RasterFrame',
   ['viewportSize', 'vec2f'],
   ['outputSrgb', 'u32', '1 when the output texture stores sRGB-encoded bytes in a unorm format'],
   ['frameIndex', 'u32'],
+  ['viewDirection', 'vec3f', 'unit vector from the target towards the eye: the direction to the viewer of an orthographic camera'],
+  ['orthographic', 'u32', '1 for an orthographic camera (every fragment is viewed along viewDirection), 0 for a perspective one'],
 ]);
 
 /** Per draw (dynamic offset): object -> world and its normal matrix. */

@@ -7,7 +7,7 @@
 import { TextureUsage } from '../../gpu/webgpu-constants.ts';
 import { fullMipCount } from '../../materials/textures/atlas-layout.ts';
 import { fitTextureToLimit } from '../../materials/textures/atlas-packer.ts';
-import { downscaleImage, generateMipChain, type Rgba8Image } from '../../materials/textures/mip-chain.ts';
+import { downscaleImage, imageMipChain, type Rgba8Image } from '../../materials/textures/mip-chain.ts';
 import { samplerUsesMipmaps, type ResolvedSampler } from '../../materials/textures/sampler-state.ts';
 import { validateTextures, type ValidatedTexture } from '../../materials/textures/texture-input.ts';
 import type { WavefrontImageInput, WavefrontTextureInput, WavefrontWrapMode } from '../../scene/types.ts';
@@ -53,7 +53,7 @@ function uploadImage(device: GPUDevice, image: Rgba8Image, srgb: boolean, mipmap
     format: srgb ? 'rgba8unorm-srgb' : 'rgba8unorm',
     usage: TextureUsage.TEXTURE_BINDING | TextureUsage.COPY_DST,
   });
-  const chain = mipmaps ? generateMipChain(base, srgb ? 'srgb' : 'linear', levels) : [base.data];
+  const chain = mipmaps ? imageMipChain(base, srgb ? 'srgb' : 'linear', levels) : [base.data];
   let bytes = 0;
   chain.forEach((data, level) => {
     const w = Math.max(1, base.width >> level);

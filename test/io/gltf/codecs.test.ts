@@ -10,7 +10,8 @@ import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
 import { Document } from '@gltf-transform/core';
 import { EXTTextureAVIF, KHRTextureBasisu } from '@gltf-transform/extensions';
-import { createDefaultContainer, write as writeKtx2 } from 'ktx-parse';
+import { createDefaultContainer, read as readKtx2, write as writeKtx2 } from 'ktx-parse';
+import { decompress } from 'fzstd';
 import { zlibSync } from 'fflate';
 import { loadGltfScene } from '../../../src/io/index.ts';
 import { codecPattern, patternSize } from './codec-pattern.ts';
@@ -125,6 +126,30 @@ test('uncompressed KTX2 as an image source: RGBA8 with zlib, RGB8 with Zstandard
   }
   const bgra = plainKtx2(50, 4, bgraUp, 0, bgraUp.length, 'ru');
   assert.deepEqual([...(await decodedBaseColor(await texturedAsset(bgra, 'image/ktx2', KHRTextureBasisu)))], [...pattern]);
+});
+
+test('a Basis Universal (UASTC) KTX2 with a mip chain: every level is transcoded into mipLevels, block for block', async () => {
+  // UASTC codes each 4 x 4 block on its own, so levels made of blocks of level 0 (the fixture's
+  // first 16, 4 and 1 blocks) must transcode to exactly those blocks' texels of level 0.
+  const container = readKtx2(fixture('pattern-uastc.ktx2'));
+  const level0 = decompress(container.levels[0]!.levelData, new Uint8Array(container.levels[0]!.uncompressedByteLength));
+  const blockCounts = [16, 4, 1, 1, 1];
+  const levels = [level0, ...blockCounts.map((n) => level0.slice(0, 16 * n))].map((levelData) => ({ levelData, uncompressedByteLength: levelData.length }));
+  Object.assign(container, { supercompressionScheme: 0, levelCount: levels.length, levels });
+  const scene = await loadGltfScene(await texturedAsset(writeKtx2(container), 'image/ktx2', KHRTextureBasisu));
+  const image = scene.images[0]!;
+  assert.deepEqual(image.mipLevels!.map((l) => [l.width, l.height]), [[16, 16], [8, 8], [4, 4], [2, 2], [1, 1]]);
+  const blocksPerRow0 = patternSize / 4;
+  image.mipLevels!.forEach((level, k) => {
+    const blocksPerRow = Math.ceil(level.width / 4);
+    for (let y = 0; y < level.height; y++) {
+      for (let x = 0; x < level.width; x++) {
+        const block = (y >> 2) * blocksPerRow + (x >> 2);
+        const from = 4 * (((block / blocksPerRow0) | 0) * 4 + (y & 3)) * patternSize + 4 * ((block % blocksPerRow0) * 4 + (x & 3));
+        assert.deepEqual([...level.data.subarray(4 * (y * level.width + x), 4 * (y * level.width + x) + 4)], [...image.data.subarray(from, from + 4)], `level ${k + 1} texel (${x}, ${y})`);
+      }
+    }
+  });
 });
 
 test('EXT_texture_avif (required): the lossless AVIF decodes to the PNG source exactly; a broken one names its image', async () => {

@@ -1,7 +1,8 @@
 /**
  * KTX 2.0 images -> RGBA8, top row first: the textures of KHR_texture_basisu, and KTX2 files some
- * tools write as plain image sources. The container is read with ktx-parse; level 0 of a 2D texture
- * (one face, one layer) is decoded:
+ * tools write as plain image sources. The container is read with ktx-parse; every mip level of a 2D
+ * texture (one face, one layer) is decoded, level 0 as the image and the rest as its `mipLevels`
+ * (used as the texture's mip chain, as the file's author filtered it):
  * - Basis Universal payloads (vkFormat UNDEFINED: ETC1S / BasisLZ or UASTC, Zstandard or not) are
  *   transcoded to RGBA32 by Binomial's transcoder (basis-transcoder.generated.ts), compiled on
  *   first use;
@@ -13,7 +14,7 @@
  * is not consulted.
  */
 import { read, type KTX2Container } from 'ktx-parse';
-import type { WavefrontImageInput } from '../../../scene/types.ts';
+import type { WavefrontImageInput, WavefrontImageLevel } from '../../../scene/types.ts';
 import { compileEmbeddedWasm, instantiateWith } from './embedded-wasm.ts';
 
 /** KTX2 supercompression schemes (KTX 2.0 section 3.12). */
@@ -43,6 +44,7 @@ interface BasisKtx2File {
   isHDR(): boolean;
   getWidth(): number;
   getHeight(): number;
+  getLevels(): number;
   startTranscoding(): boolean;
   getImageTranscodedSizeInBytes(level: number, layer: number, face: number, format: number): number;
   transcodeImage(dst: Uint8Array, level: number, layer: number, face: number, format: number, getAlphaForOpaqueFormats: number, channel0: number, channel1: number): number;
@@ -79,15 +81,20 @@ function bottomUp(container: KTX2Container): boolean {
   return text.replace(/\0+$/, '')[1] === 'u';
 }
 
-function flipRows(image: WavefrontImageInput): WavefrontImageInput {
+function flipRows(image: WavefrontImageLevel): WavefrontImageLevel {
   const row = image.width * 4;
   const out = new Uint8Array(image.data.length);
   for (let y = 0; y < image.height; y++) out.set(image.data.subarray((image.height - 1 - y) * row, (image.height - y) * row), y * row);
   return { ...image, data: out };
 }
 
-async function inflateLevel(container: KTX2Container): Promise<Uint8Array> {
-  const level = container.levels[0]!;
+/** Size of mip level k (KTX 2.0 section 4.1: max(1, floor(size / 2^k))). */
+function levelSize(container: KTX2Container, k: number): [number, number] {
+  return [Math.max(1, container.pixelWidth >> k), Math.max(1, container.pixelHeight >> k)];
+}
+
+async function inflateLevel(container: KTX2Container, k: number): Promise<Uint8Array> {
+  const level = container.levels[k]!;
   switch (container.supercompressionScheme) {
     case SUPERCOMPRESSION.none:
       return level.levelData;
@@ -104,11 +111,11 @@ async function inflateLevel(container: KTX2Container): Promise<Uint8Array> {
   }
 }
 
-async function decodePlain(container: KTX2Container, format: { name: string; channels: number; order: readonly number[] }): Promise<WavefrontImageInput> {
-  const { pixelWidth: width, pixelHeight: height } = container;
-  const data = await inflateLevel(container);
+async function decodePlain(container: KTX2Container, format: { name: string; channels: number; order: readonly number[] }, k: number): Promise<WavefrontImageLevel> {
+  const [width, height] = levelSize(container, k);
+  const data = await inflateLevel(container, k);
   // KTX 2.0 rows of uncompressed formats are tightly packed (section 3.10.1).
-  if (data.length < width * height * format.channels) throw new Error(`level 0 holds ${data.length} bytes, ${format.name} at ${width} x ${height} needs ${width * height * format.channels}`);
+  if (data.length < width * height * format.channels) throw new Error(`level ${k} holds ${data.length} bytes, ${format.name} at ${width} x ${height} needs ${width * height * format.channels}`);
   const out = new Uint8Array(width * height * 4);
   for (let p = 0; p < width * height; p++) {
     const s = p * format.channels;
@@ -118,18 +125,22 @@ async function decodePlain(container: KTX2Container, format: { name: string; cha
   return { width, height, data: out };
 }
 
-async function transcodeBasis(bytes: Uint8Array): Promise<WavefrontImageInput> {
+async function transcodeBasis(bytes: Uint8Array, container: KTX2Container): Promise<WavefrontImageLevel[]> {
   const basis = await loadBasis();
   const file = new basis.KTX2File(bytes);
   try {
     if (!file.isValid()) throw new Error('the Basis transcoder rejects the file');
     if (file.isHDR()) throw new Error('HDR (UASTC HDR) textures are not supported');
     if (!file.startTranscoding()) throw new Error('the Basis transcoder cannot start');
-    const width = file.getWidth();
-    const height = file.getHeight();
-    const data = new Uint8Array(file.getImageTranscodedSizeInBytes(0, 0, 0, TRANSCODE_RGBA32));
-    if (data.length !== width * height * 4 || !file.transcodeImage(data, 0, 0, 0, TRANSCODE_RGBA32, 0, -1, -1)) throw new Error('the Basis transcoder failed on level 0');
-    return { width, height, data };
+    if (file.getWidth() !== container.pixelWidth || file.getHeight() !== container.pixelHeight || file.getLevels() !== container.levels.length) {
+      throw new Error(`the Basis transcoder reads ${file.getWidth()} x ${file.getHeight()} with ${file.getLevels()} levels, the container says ${container.pixelWidth} x ${container.pixelHeight} with ${container.levels.length}`);
+    }
+    return container.levels.map((_, k) => {
+      const [width, height] = levelSize(container, k);
+      const data = new Uint8Array(file.getImageTranscodedSizeInBytes(k, 0, 0, TRANSCODE_RGBA32));
+      if (data.length !== width * height * 4 || !file.transcodeImage(data, k, 0, 0, TRANSCODE_RGBA32, 0, -1, -1)) throw new Error(`the Basis transcoder failed on level ${k}`);
+      return { width, height, data };
+    });
   } finally {
     file.close();
     file.delete();
@@ -149,12 +160,17 @@ export async function decodeKtx2(bytes: Uint8Array): Promise<WavefrontImageInput
     throw new Error(`only 2D textures are supported (got ${pixelWidth} x ${pixelHeight} x ${pixelDepth}, ${layerCount} layers, ${faceCount} faces)`);
   }
   if (container.levels.length === 0) throw new Error('the file holds no mip level');
-  let image: WavefrontImageInput;
-  if (vkFormat === 0) image = await transcodeBasis(bytes);
+  // levelCount 0 in the header means "generate the chain" (section 3.7): the file still stores level 0 only.
+  if (container.levels.length > 32 - Math.clz32(Math.max(pixelWidth, pixelHeight))) throw new Error(`${container.levels.length} mip levels exceed the chain of a ${pixelWidth} x ${pixelHeight} texture`);
+  let levels: WavefrontImageLevel[];
+  if (vkFormat === 0) levels = await transcodeBasis(bytes, container);
   else {
     const format = PLAIN_FORMATS[vkFormat];
     if (format === undefined) throw new Error(`vkFormat ${vkFormat} is not supported (Basis Universal, or uncompressed 8-bit R / RG / RGB / BGR / RGBA / BGRA)`);
-    image = await decodePlain(container, format);
+    levels = [];
+    for (let k = 0; k < container.levels.length; k++) levels.push(await decodePlain(container, format, k));
   }
-  return bottomUp(container) ? flipRows(image) : image;
+  if (bottomUp(container)) levels = levels.map(flipRows);
+  const [image, ...mipLevels] = levels as [WavefrontImageLevel, ...WavefrontImageLevel[]];
+  return mipLevels.length > 0 ? { ...image, mipLevels } : image;
 }
