@@ -4,7 +4,8 @@
  *
  * - The source the caller names (a path, a URL, bytes) is read as asked: a regular file (stat
  *   first: devices, pipes and /proc-like pseudo-files are refused) or one fetch, size-capped, with a
- *   timeout. With `root`, the source must lie inside that folder too.
+ *   timeout. With `root`, the source and every reference it makes must lie inside that folder too
+ *   (after symbolic links).
  * - A reference an asset makes (a glTF buffer or image `uri`, a scene file's `images[].uri`,
  *   `environment.map` or `gltf[].src`) is a data URI, or a relative URI reference (RFC 3986 section
  *   4.2) resolving inside the asset's own folder (glTF 2.0 section 3.1: relative to the asset's
@@ -257,7 +258,7 @@ export async function readSource(url: URL, policy: ResolvedResourcePolicy, site:
   if (policy.root !== undefined && !isInsideFolder(url, policy.root) && !isAllowedOrigin(url, policy)) {
     refuse(site, `${url.href} lies outside the resource policy's root ${policy.root.href}`);
   }
-  return readLocation(url, policy.root !== undefined && !isAllowedOrigin(url, policy) ? policy.root : undefined, policy, site, signal, url, url.protocol === 'file:' ? undefined : url.href);
+  return readLocation(url, policy.root !== undefined && !isAllowedOrigin(url, policy) ? [policy.root] : [], policy, site, signal, url, url.protocol === 'file:' ? undefined : url.href);
 }
 
 /** What the loaders accept as a file: a path (Node), a URL (fetched), or the file's bytes. */
@@ -282,9 +283,12 @@ export async function readReference(uri: string, asset: URL | undefined, policy:
   if (/^data:/i.test(uri)) return dataBytes(uri, policy, site);
   const url = resolveReference(uri, asset, policy, site);
   const folder = folderOf(asset!);
-  const confine = folder !== undefined && isInsideFolder(url, folder) ? folder : undefined;
   const shown = JSON.stringify(uri.length > 120 ? `${uri.slice(0, 120)}...` : uri);
-  return readLocation(url, confine, policy, site, signal, asset!, `${shown} (${url.href})`);
+  // The root bounds every read, the asset's references too (an asset whose folder is a link out of the root reads nothing there).
+  const rooted = policy.root !== undefined && !isAllowedOrigin(url, policy);
+  if (rooted && !isInsideFolder(url, policy.root!)) refuse(site, `${shown} (${url.href}) lies outside the resource policy's root ${policy.root!.href}`);
+  const confines = [...(folder !== undefined && isInsideFolder(url, folder) ? [folder] : []), ...(rooted ? [policy.root!] : [])];
+  return readLocation(url, confines, policy, site, signal, asset!, `${shown} (${url.href})`);
 }
 
 function dataBytes(uri: string, policy: ResolvedResourcePolicy, site: ResourceSite): Uint8Array {
@@ -298,7 +302,7 @@ function dataBytes(uri: string, policy: ResolvedResourcePolicy, site: ResourceSi
 /** `label` names the resource in messages (default: its path or URL). */
 async function readLocation(
   url: URL,
-  confine: URL | undefined,
+  confines: readonly URL[],
   policy: ResolvedResourcePolicy,
   site: ResourceSite,
   signal: AbortSignal | undefined,
@@ -307,12 +311,12 @@ async function readLocation(
 ): Promise<Uint8Array> {
   if (url.protocol === 'file:') {
     if (!isNodeRuntime()) refuse(site, `${url.href}: file: URLs are read in Node.js only; pass a URL or the bytes`);
-    return readLocalFile(url, confine, policy, site, signal, label);
+    return readLocalFile(url, confines, policy, site, signal, label);
   }
   if (url.protocol === 'http:' || url.protocol === 'https:' || url.protocol === 'blob:') {
     // A redirect may go where a reference could go itself: inside the folder, the same origin as
     // the caller's own source, or an allowed origin.
-    const redirectOk = (next: URL): boolean => isAllowedOrigin(next, policy) || (confine !== undefined ? isInsideFolder(next, confine) : next.origin === origin.origin);
+    const redirectOk = (next: URL): boolean => isAllowedOrigin(next, policy) || (confines.length > 0 ? confines.every((folder) => isInsideFolder(next, folder)) : next.origin === origin.origin);
     return fetchBytes(url, policy, site, signal, redirectOk, label ?? url.href);
   }
   refuse(site, `${url.protocol} URLs are not read (file paths, http(s), blob: and data: URIs are)`);

@@ -34,12 +34,12 @@ function pathInside(path: typeof NodePath, parent: string, child: string): boole
 const READ_CHUNK = 1 << 24;
 
 /**
- * Reads a regular file: realpath (and, with `confine`, the real path inside the real folder), stat
+ * Reads a regular file: realpath (and the real path inside each real folder of `confines`), stat
  * (regular file, size within the cap) and open without blocking or following a final link, then
  * fstat again and read exactly its size in chunks (the signal is checked between them). A file that
  * yields more bytes than its size (a /proc or /sys pseudo-file, or one growing) is refused.
  */
-export async function readLocalFile(url: URL, confine: URL | undefined, policy: ResolvedResourcePolicy, site: ResourceSite, signal: AbortSignal | undefined, label: string | undefined): Promise<Uint8Array> {
+export async function readLocalFile(url: URL, confines: readonly URL[], policy: ResolvedResourcePolicy, site: ResourceSite, signal: AbortSignal | undefined, label: string | undefined): Promise<Uint8Array> {
   const maxBytes = policy.maxResourceBytes;
   const fs = await nodeModule<typeof NodeFsPromises>('node:fs/promises');
   const { constants } = await nodeModule<typeof NodeFs>('node:fs');
@@ -58,14 +58,16 @@ export async function readLocalFile(url: URL, confine: URL | undefined, policy: 
   } catch (error) {
     refuse(site, `cannot read ${shown}: ${describeFsError(error)}`, error);
   }
-  let realRoot: string | undefined;
-  if (confine !== undefined) {
+  const realRoots: string[] = [];
+  for (const confine of confines) {
+    let realRoot: string;
     try {
       realRoot = await fs.realpath(nodeUrl.fileURLToPath(confine));
     } catch (error) {
       refuse(site, `cannot resolve the folder ${confine.href}: ${describeFsError(error)}`, error);
     }
     if (!pathInside(path, realRoot, real)) refuse(site, `${shown} leads (through a symbolic link) to ${real}, outside the folder ${realRoot}`);
+    realRoots.push(realRoot);
   }
   signal?.throwIfAborted();
   const before = await fs.stat(real).catch((error: unknown) => refuse(site, `cannot read ${shown}: ${describeFsError(error)}`, error));
@@ -77,10 +79,10 @@ export async function readLocalFile(url: URL, confine: URL | undefined, policy: 
     const stat = await handle.stat();
     if (!stat.isFile()) refuse(site, `${shown} is ${fileKind(stat)}; only regular files are read`);
     if (stat.size > maxBytes) refuse(site, `${shown} has ${stat.size} bytes, over the resource limit of ${maxBytes} (resourcePolicy.maxResourceBytes)`);
-    if (realRoot !== undefined && process.platform === 'linux') {
+    if (realRoots.length > 0 && process.platform === 'linux') {
       // What was opened, whatever happened to the path since realpath().
       const opened = await fs.readlink(`/proc/self/fd/${handle.fd}`).catch(() => undefined);
-      if (opened !== undefined && opened.startsWith('/') && !pathInside(path, realRoot, opened)) refuse(site, `${shown} was replaced by a link to ${opened} while being opened`);
+      if (opened !== undefined && opened.startsWith('/') && realRoots.some((root) => !pathInside(path, root, opened))) refuse(site, `${shown} was replaced by a link to ${opened} while being opened`);
     }
     policy.budget?.charge(stat.size, site, `the ${stat.size} bytes of ${shown}`);
     const out = new Uint8Array(stat.size);

@@ -5,7 +5,7 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { execFileSync } from 'node:child_process';
-import { symlinkSync, writeFileSync } from 'node:fs';
+import { mkdirSync, symlinkSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { pathToFileURL } from 'node:url';
 import { loadGltfScene } from '../../src/io/index.ts';
@@ -82,6 +82,25 @@ test('devices, pipes, folders and pseudo-files are refused, as references and as
     await refused(loadGltfScene(join(f.asset, 'fifo')), 'INVALID_GLTF', '', /named pipe/, 2000);
     await refused(loadGltfScene(f.asset), 'INVALID_GLTF', '', /directory/, 2000);
     await refused(loadGltfScene('/proc/self/environ'), 'INVALID_GLTF', '', /pseudo-file/, 2000);
+  } finally {
+    f.cleanup();
+  }
+});
+
+test('resourcePolicy.root confines the references too: an asset whose folder links out of the root reads nothing there', async () => {
+  const f = assetFolder();
+  try {
+    // asset/linked -> ../outside; outside/scene.gltf -> the real asset inside the root; outside/tri.bin beside it.
+    const outside = join(f.root, 'outside');
+    mkdirSync(outside);
+    writeFileSync(join(outside, 'tri.bin'), TRIANGLE);
+    writeFileSync(join(f.asset, 'scene-real.gltf'), JSON.stringify(triangleGltf('tri.bin')));
+    symlinkSync(join(f.asset, 'scene-real.gltf'), join(outside, 'scene.gltf'));
+    symlinkSync(outside, join(f.asset, 'linked'));
+    const path = join(f.asset, 'linked', 'scene.gltf');
+    // Without a root the reference stays in the asset's folder (outside/), so it loads.
+    assert.equal((await loadGltfScene(path)).meshes.length, 1);
+    await refused(loadGltfScene(path, { resourcePolicy: { root: f.asset } }), 'INVALID_GLTF', '/buffers/0', /symbolic link.*outside the folder/);
   } finally {
     f.cleanup();
   }
