@@ -12,6 +12,7 @@
  * slots per renderSample, default a quarter of the pixels, so one call is a fraction of the budget).
  */
 import type { Page } from 'playwright-core';
+import { loadavg } from 'node:os';
 import { chromiumPath, chromiumWebGpuArgs, openPackagePage } from '../test/browser/browser-session.ts';
 import { pageAdapterInfo, runOurs, runPeer, type PageArgs, type PageRun } from './browser-page.ts';
 import { convergedReference, type Reference } from './browser-reference.ts';
@@ -69,6 +70,8 @@ export interface BrowserBenchResult {
   pageAdapter: string;
   chromium: string;
   scenes: BrowserSceneResult[];
+  /** 1-minute load average before and after (other processes slow a software adapter). */
+  loadAverage: { before: number; after: number };
 }
 
 /**
@@ -163,7 +166,7 @@ export async function runBrowserBenchmark(options: BrowserBenchOptions, log: (li
     },
     ...(options.gpu ? { args: chromiumWebGpuArgs.filter((a) => !a.includes('swiftshader')) } : {}),
   });
-  const result: BrowserBenchResult = { options, pageAdapter: '', chromium: session.browser.version(), scenes: [] };
+  const result: BrowserBenchResult = { options, pageAdapter: '', chromium: session.browser.version(), scenes: [], loadAverage: { before: loadavg()[0]!, after: 0 } };
   try {
     const { tab } = session;
     tab.setDefaultTimeout(0);
@@ -196,6 +199,7 @@ export async function runBrowserBenchmark(options: BrowserBenchOptions, log: (li
   } finally {
     await session.close();
   }
+  result.loadAverage.after = loadavg()[0]!;
   return result;
 }
 
@@ -234,4 +238,5 @@ export function printBrowserBenchmark(result: BrowserBenchResult, log: (line: st
   }
   const adapters = [...new Set(result.scenes.flatMap((s) => s.rows.map((r) => `${r.renderer}: ${r.adapter}`)))];
   log(`adapters: page ${result.pageAdapter}; ${adapters.join('; ')}`);
+  log(`load average (1 min) before ${result.loadAverage.before.toFixed(2)}, after ${result.loadAverage.after.toFixed(2)}`);
 }
