@@ -11,7 +11,11 @@ export const defaultRedisUrl = 'redis://127.0.0.1:6379';
 export const defaultFarmQueue = 'gpu-renderer';
 
 export interface FarmConnectionOptions {
-  /** redis://[user:password@]host:port[/db] or rediss://...; default REDIS_URL, else redis://127.0.0.1:6379. */
+  /**
+   * redis://[user:password@]host:port[/db], or rediss://... for TLS (the server's certificate is
+   * checked against Node's CAs; NODE_EXTRA_CA_CERTS adds a private CA); default REDIS_URL, else
+   * redis://127.0.0.1:6379. A password never appears in messages or `farm status`.
+   */
   redis?: string;
   /** The BullMQ queue's name; default 'gpu-renderer'. */
   queue?: string;
@@ -21,6 +25,8 @@ export interface FarmConnection {
   url: string;
   /** Where the URL came from, for errors: '--redis', 'REDIS_URL' or 'default'. */
   source: string;
+  /** The URL without its password, for messages. */
+  shown: string;
   queue: string;
 }
 
@@ -32,13 +38,14 @@ export function resolveFarmConnection(options: FarmConnectionOptions = {}, env: 
   try {
     parsed = new URL(url);
   } catch {
-    throw new GpuRendererError('INVALID_OPTION', `cannot read ${JSON.stringify(url)} as a URL (expected redis://host:port)`, { field: source });
+    throw new GpuRendererError('INVALID_OPTION', `cannot read ${JSON.stringify(redactRedisUrl(url))} as a URL (expected redis://host:port)`, { field: source });
   }
-  if (parsed.protocol !== 'redis:' && parsed.protocol !== 'rediss:') throw new GpuRendererError('INVALID_OPTION', `expected a redis:// or rediss:// URL, got ${JSON.stringify(url)}`, { field: source });
-  if (parsed.hostname === '') throw new GpuRendererError('INVALID_OPTION', `no host in ${JSON.stringify(url)}`, { field: source });
+  const shown = redactRedisUrl(url);
+  if (parsed.protocol !== 'redis:' && parsed.protocol !== 'rediss:') throw new GpuRendererError('INVALID_OPTION', `expected a redis:// or rediss:// URL, got ${JSON.stringify(shown)}`, { field: source });
+  if (parsed.hostname === '') throw new GpuRendererError('INVALID_OPTION', `no host in ${JSON.stringify(shown)}`, { field: source });
   const queue = options.queue ?? defaultFarmQueue;
   if (!/^[A-Za-z0-9._-]+$/.test(queue)) throw new GpuRendererError('INVALID_OPTION', `queue names are letters, digits, '.', '_' and '-', got ${JSON.stringify(queue)}`, { field: '--queue' });
-  return { url, source, queue };
+  return { url, source, shown, queue };
 }
 
 export type Bull = typeof BullMQ;
@@ -87,13 +94,25 @@ export async function connectRedis(connection: FarmConnection, timeoutMs = 3000)
     await client.ping();
   } catch (error) {
     client.disconnect();
-    throw new GpuRendererError('QUEUE_UNAVAILABLE', `cannot reach Redis at ${connection.url}: ${(error as Error).message}`, { field: connection.source, cause: error });
+    throw new GpuRendererError('QUEUE_UNAVAILABLE', `cannot reach Redis at ${connection.shown}: ${(error as Error).message.replaceAll(new URL(connection.url).password || '\0', '***')}`, { field: connection.source, cause: error });
   }
   return client;
 }
 
 /** The Redis keys of the farm's own records (next to BullMQ's keys of the queue). */
-export function farmKeys(queue: string, job?: string): { jobs: string; job: string; done: string; failed: string } {
+export function farmKeys(queue: string, job?: string): { jobs: string; job: string; done: string; failed: string; refused: string } {
   const base = `gpu-renderer-farm:${queue}`;
-  return { jobs: `${base}:jobs`, job: `${base}:job:${job ?? ''}`, done: `${base}:job:${job ?? ''}:done`, failed: `${base}:job:${job ?? ''}:failed` };
+  return { jobs: `${base}:jobs`, job: `${base}:job:${job ?? ''}`, done: `${base}:job:${job ?? ''}:done`, failed: `${base}:job:${job ?? ''}:failed`, refused: `${base}:refused` };
+}
+
+/** The URL as messages and `farm status` show it: a password is replaced by `***`. */
+export function redactRedisUrl(url: string): string {
+  try {
+    const parsed = new URL(url);
+    if (parsed.password === '') return url;
+    parsed.password = '***';
+    return parsed.href;
+  } catch {
+    return url;
+  }
 }
