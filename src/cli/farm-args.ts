@@ -52,7 +52,7 @@ outside them.`,
     { flag: '--output-root', value: '<dir>', help: 'frames may be written only inside this folder (repeatable; required, or GPU_RENDERER_FARM_OUTPUT_ROOTS)', apply: (command, value = '', flag) => void (command.outputRoots ??= []).push(text(value, flag)) },
     { flag: '--asset-root', value: '<dir>', help: "scenes, environment maps and every file they reference are read only inside this folder (repeatable; required, or GPU_RENDERER_FARM_ASSET_ROOTS)", apply: (command, value = '', flag) => void (command.assetRoots ??= []).push(text(value, flag)) },
     { flag: '--path-map', value: '<from=to>', help: "read a job's paths under FROM as the same paths under TO, the longest FROM first (repeatable, or GPU_RENDERER_FARM_PATH_MAP)", apply: (command, value = '', flag) => void (command.pathMap ??= []).push(parsePathMapping(value, flag)) },
-    { flag: '--allow-origin', value: '<origin>', help: "let assets' references fetch from this origin (repeatable or comma separated, or GPU_RENDERER_FARM_ALLOW_ORIGINS); a job cannot allow any", apply: (command, value = '', flag) => void (command.allowedOrigins ??= []).push(...value.split(',').map((origin) => parseOrigin(origin.trim(), flag))) },
+    { flag: '--allow-origin', value: '<origin>', help: "let assets' references fetch from this origin (repeatable, comma separated, or GPU_RENDERER_FARM_ALLOW_ORIGINS); jobs cannot add origins", apply: (command, value = '', flag) => void (command.allowedOrigins ??= []).push(...value.split(',').map((origin) => parseOrigin(origin.trim(), flag))) },
   ],
 };
 
