@@ -94,7 +94,8 @@ const object = (shape: Shape): Check => (value, field) => {
   if (proto !== Object.prototype && proto !== null) refuse(field || '/', 'expected a plain object');
   const o = value as Record<string, unknown>;
   for (const key of Object.keys(o)) {
-    const rule = shape[key];
+    // Own keys only: `__proto__` and the like name no rule.
+    const rule = Object.hasOwn(shape, key) ? shape[key] : undefined;
     if (rule === undefined) refuse(at(key), `unknown key (a frame job has ${Object.keys(shape).filter((k) => !('refused' in shape[k]!)).join(', ')})`);
     if ('refused' in rule) {
       if (o[key] !== undefined) refuse(at(key), rule.refused);
