@@ -88,13 +88,17 @@ export async function connectRedis(connection: FarmConnection, timeoutMs = 3000)
   const Redis = (module.Redis ?? module.default) as RedisConstructor;
   // BullMQ needs maxRetriesPerRequest null for blocking commands; the first connection fails fast instead of retrying.
   const client = new Redis(connection.url, { lazyConnect: true, connectTimeout: timeoutMs, maxRetriesPerRequest: null, retryStrategy: () => null, enableOfflineQueue: false });
-  (client as unknown as { on(event: string, listener: () => void): void }).on('error', () => undefined);
+  // The connection's own error (a refused password, an untrusted certificate) says more than the
+  // "Connection is closed." the failed call reports after it.
+  let cause: Error | undefined;
+  (client as unknown as { on(event: string, listener: (error: Error) => void): void }).on('error', (error) => void (cause ??= error));
   try {
     await client.connect();
     await client.ping();
   } catch (error) {
     client.disconnect();
-    throw new GpuRendererError('QUEUE_UNAVAILABLE', `cannot reach Redis at ${connection.shown}: ${(error as Error).message.replaceAll(new URL(connection.url).password || '\0', '***')}`, { field: connection.source, cause: error });
+    const why = [cause?.message, (error as Error).message].filter((m, i, all) => m !== undefined && all.indexOf(m) === i).join('; ');
+    throw new GpuRendererError('QUEUE_UNAVAILABLE', `cannot reach Redis at ${connection.shown}: ${why}`, { field: connection.source, cause: cause ?? error });
   }
   return client;
 }
