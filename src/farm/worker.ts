@@ -81,7 +81,7 @@ export async function runFarmWorker(options: FarmWorkerOptions = {}): Promise<Fa
   const lockDuration = positiveMs(options.lockDuration, 30000, '--lock-duration');
   const stalledInterval = positiveMs(options.stalledInterval, 15000, '--stalled-interval');
   const redis = await connectRedis(connection);
-  const { Worker, Queue } = await loadBullmq();
+  const { Worker, Queue, UnrecoverableError } = await loadBullmq();
   const id = `${hostname()}:${process.pid}`;
   const log = (line: string): void => void options.log?.write(`worker ${id}: ${line}\n`);
   const summary: FarmWorkerSummary = { worker: id, written: 0, skipped: 0, assetsLoaded: 0 };
@@ -105,7 +105,6 @@ export async function runFarmWorker(options: FarmWorkerOptions = {}): Promise<Fa
     return cached;
   };
 
-  const { UnrecoverableError } = await loadBullmq();
   /** A refused job fails once (no retries: the same data is refused again), its reason recorded for `farm status`. */
   const refuse = async (job: BullMQ.Job, error: unknown): Promise<never> => {
     const failure = failureOf(error, id);
@@ -188,10 +187,12 @@ export async function runFarmWorker(options: FarmWorkerOptions = {}): Promise<Fa
   worker.on('failed', (job, error) => {
     // Refusals were recorded where they were found; the data of such a job is not to be read here.
     if (job === undefined || error instanceof UnrecoverableError) return;
+    const owner = frameJobOf(job.data);
+    if (owner === undefined) return;
     const attempts = job.opts.attempts ?? 1;
-    const frame = job.data as FarmFrameData;
-    log(`frame ${frame.item.frame} (${frame.job} #${frame.index}) failed (try ${job.attemptsMade} of ${attempts}): ${error.message}`);
-    if (job.attemptsMade >= attempts) void recordFrameFailure(redis, connection.queue, frame.job, frame.index, failureOf(error, id));
+    const frame = (job.data as Partial<FarmFrameData>).item?.frame;
+    log(`frame ${frame} (${owner.job} #${owner.index}) failed (try ${job.attemptsMade} of ${attempts}): ${error.message}`);
+    if (job.attemptsMade >= attempts) void recordFrameFailure(redis, connection.queue, owner.job, owner.index, failureOf(error, id));
   });
   worker.on('error', (error) => log(`error: ${error.message}`));
 
