@@ -58,6 +58,8 @@ export interface FarmWorkerSummary {
   skipped: number;
   /** Assets it loaded (one per asset and settings, however many frames). */
   assetsLoaded: number;
+  /** Frames it refused (FARM_JOB_REFUSED: outside its roots or origins, or breaking the schema). */
+  refused: number;
 }
 
 interface CachedAsset {
@@ -84,7 +86,7 @@ export async function runFarmWorker(options: FarmWorkerOptions = {}): Promise<Fa
   const { Worker, Queue, UnrecoverableError } = await loadBullmq();
   const id = `${hostname()}:${process.pid}`;
   const log = (line: string): void => void options.log?.write(`worker ${id}: ${line}\n`);
-  const summary: FarmWorkerSummary = { worker: id, written: 0, skipped: 0, assetsLoaded: 0 };
+  const summary: FarmWorkerSummary = { worker: id, written: 0, skipped: 0, assetsLoaded: 0, refused: 0 };
   let cached: CachedAsset | null = null;
 
   const assetFor = async (render: FarmFrameData['render'], scenePolicy: ResourcePolicy, envPolicy: ResourcePolicy): Promise<CachedAsset> => {
@@ -108,6 +110,7 @@ export async function runFarmWorker(options: FarmWorkerOptions = {}): Promise<Fa
   /** A refused job fails once (no retries: the same data is refused again), its reason recorded for `farm status`. */
   const refuse = async (job: BullMQ.Job, error: unknown): Promise<never> => {
     const failure = failureOf(error, id);
+    summary.refused += 1;
     const owner = frameJobOf(job.data);
     if (owner !== undefined) await recordFrameFailure(redis, connection.queue, owner.job, owner.index, failure);
     else await recordMalformedJob(redis, connection.queue, job.id ?? job.name, failure);

@@ -82,7 +82,7 @@ test('Redis with requirepass: a wrong or missing password is refused, the right 
   t.after(() => (saved === undefined ? delete process.env.REDIS_URL : (process.env.REDIS_URL = saved)));
   assert.equal((await farm(['submit', tube, ...tiny, '--out', join(outside, 'evil-####.png'), '--name', 'evil'])).code, 0);
   const summary = await runFarmWorker({ outputRoots: [frames], assetRoots: [assets], exitWhenIdle: true, stalledInterval: 500 });
-  assert.equal(summary.written, 0);
+  assert.deepEqual([summary.written, summary.refused], [0, 1]);
   assert.deepEqual(await readdir(outside), []);
   const json = JSON.parse((await farm(['status', '--json'])).stdout) as FarmStatus;
   assert.equal(json.redis, `redis://:***@${host}`);
@@ -110,6 +110,7 @@ test('Redis over TLS only (rediss://, self-signed certificate): trusted through 
   const worker = await farmProcess(['worker', '--exit-when-idle', '--stalled-interval', '500', '--output-root', frames, '--asset-root', assets], trusted);
   assert.equal(worker.code, 0, worker.stderr);
   assert.match(worker.stderr, /evil #0 refused: path: .* lies outside the worker's output roots/);
+  assert.match(worker.stderr, /stopped; 0 frames written, 0 found done, 0 asset loads, 1 refused \(see farm status\)/);
   assert.deepEqual(await readdir(outside), []);
   const status = await farmProcess(['status', '--json'], trusted);
   assert.equal(status.code, 0, status.stderr);

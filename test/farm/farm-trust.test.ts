@@ -158,6 +158,7 @@ test('a worker refuses every job reaching outside its roots or origins, with not
     log,
   });
   assert.equal(summary.written, 2, log.text);
+  assert.equal(summary.refused, 13, 'every hostile job, the malformed one included');
 
   // The honest jobs rendered: the plain one, and the mapped one with its buffer from the allowed origin.
   assert.equal(decode(await readFile(join(frames, 'ok-0000.png'))).width, 16);
