@@ -84,7 +84,7 @@ export async function createWavefrontPathTracingComputeRenderer(options: Wavefro
     checkBufferLimits(limits, plan);
     const wavePaths = Math.min(maxWavePaths, config.width * config.height * config.samplesPerPixel);
     const initialPlan = planBuffers({ ...estimate, materialCells: prepared.materials.byteLength / 16, lightCount: prepared.lightCount, lightHeapCells: lighting.heap.byteLength / 16, primitiveCount: prepared.primitiveCount, wavePaths });
-    const features = specialization === 'off' ? allShaderFeatures : sceneFeatures(prepared, lighting, config);
+    const features = specialization === 'off' ? allShaderFeatures : sceneFeatures(prepared, lighting, config, acquired);
     const [pipelines, adaptivePipelines, denoisePipelines] = await Promise.all([
       pathTracerPipelines(acquired.device, features, config.integrator),
       config.output.adaptive ? createAdaptivePipelines(acquired.device, features) : null,
