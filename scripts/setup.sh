@@ -3,7 +3,7 @@
 #  - Mesa >= 25 lavapipe: Dawn rejects bookworm's Mesa 22.3, so on a machine without a GPU the
 #    Vulkan software driver comes from bookworm-backports.
 #  - Debian's chromium for the browser tests (never a downloaded browser build).
-#  - Debian's redis-server for the render farm's tests.
+#  - Debian's redis-server for the render farm's tests, and openssl for their TLS certificate.
 #  - npm dependencies, including Node.js 24 (the `node` package) that every npm script runs on.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -35,10 +35,15 @@ if command -v apt-get >/dev/null 2>&1; then
   fi
   # The render farm tests start their own redis-server on a free loopback port (any system service is left alone).
   if ! command -v redis-server >/dev/null 2>&1; then
-    if [ "$need_update" = 1 ]; then $SUDO apt-get update -qq; fi
+    if [ "$need_update" = 1 ]; then $SUDO apt-get update -qq; need_update=0; fi
     DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq redis-server
+  fi
+  # The farm's TLS test makes a self-signed certificate for its redis-server with openssl.
+  if ! command -v openssl >/dev/null 2>&1; then
+    if [ "$need_update" = 1 ]; then $SUDO apt-get update -qq; need_update=0; fi
+    DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq openssl
   fi
 fi
 
 if [ -f package-lock.json ]; then npm ci --no-fund --no-audit; else npm install --no-fund --no-audit; fi
-echo "setup: mesa-vulkan-drivers $(dpkg-query -W -f='${Version}' mesa-vulkan-drivers 2>/dev/null || echo n/a), node $(node_modules/.bin/node --version), chromium $(command -v chromium || echo missing), redis-server $(command -v redis-server || echo missing)"
+echo "setup: mesa-vulkan-drivers $(dpkg-query -W -f='${Version}' mesa-vulkan-drivers 2>/dev/null || echo n/a), node $(node_modules/.bin/node --version), chromium $(command -v chromium || echo missing), redis-server $(command -v redis-server || echo missing), openssl $(command -v openssl || echo missing)"

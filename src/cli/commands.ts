@@ -113,6 +113,14 @@ export interface FarmWorkerCommand extends FarmCommandBase {
   exitWhenIdle: boolean;
   lockDuration?: number;
   stalledInterval?: number;
+  /** Folders frames may be written into (`--output-root`, repeatable). */
+  outputRoots?: string[];
+  /** Folders assets and what they reference may be read from (`--asset-root`, repeatable). */
+  assetRoots?: string[];
+  /** Job path prefixes replaced on this worker (`--path-map FROM=TO`, repeatable). */
+  pathMap?: { from: string; to: string }[];
+  /** Origins an asset's references may be fetched from (`--allow-origin`, repeatable). */
+  allowedOrigins?: string[];
 }
 
 export interface FarmStatusCommand extends FarmCommandBase {

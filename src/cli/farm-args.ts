@@ -3,6 +3,8 @@ import type { FarmCommand, FarmCommandBase, FarmStatusCommand, FarmSubmitCommand
 import { formatOptions, helpOption, optionSetters, parseOptions, type CliOption } from './option-table.ts';
 import { integer, invalidOption, nonEmpty } from './option-values.ts';
 import { parseRenderArgs } from './render-args.ts';
+import { parseOrigin } from '../io/resource-policy.ts';
+import { parsePathMapping } from '../farm/path-map.ts';
 
 const text = nonEmpty('a value');
 const milliseconds = integer(100, 86_400_000);
@@ -39,11 +41,18 @@ job file whose keys are those options in camelCase ("scene", "out", "frames", ..
 
 const workerAction: FarmAction<FarmWorkerCommand> = {
   synopsis: 'gpu-renderer farm worker',
-  about: 'Render frames until stopped (SIGINT / SIGTERM finish the frame in hand).',
+  about: `Render frames until stopped (SIGINT / SIGTERM finish the frame in hand). A job is untrusted:
+its scene, environment map and output must resolve (after --path-map and symbolic links) inside
+the roots, or the frame is refused (FARM_JOB_REFUSED, shown by farm status); nothing is written
+outside them.`,
   options: [
     { flag: '--exit-when-idle', help: 'exit once nothing is waiting, delayed or active', apply: worker.assign('exitWhenIdle', true) },
     { flag: '--lock-duration', value: '<ms>', help: "a dead worker's frame is taken over after this (default 30000)", apply: worker.set('lockDuration', milliseconds) },
     { flag: '--stalled-interval', value: '<ms>', help: 'how often to look for such frames (default 15000)', apply: worker.set('stalledInterval', milliseconds) },
+    { flag: '--output-root', value: '<dir>', help: 'frames may be written only inside this folder (repeatable; required, or GPU_RENDERER_FARM_OUTPUT_ROOTS)', apply: (command, value = '', flag) => void (command.outputRoots ??= []).push(text(value, flag)) },
+    { flag: '--asset-root', value: '<dir>', help: "scenes, environment maps and every file they reference are read only inside this folder (repeatable; required, or GPU_RENDERER_FARM_ASSET_ROOTS)", apply: (command, value = '', flag) => void (command.assetRoots ??= []).push(text(value, flag)) },
+    { flag: '--path-map', value: '<from=to>', help: "read a job's paths under FROM as the same paths under TO, the longest FROM first (repeatable, or GPU_RENDERER_FARM_PATH_MAP)", apply: (command, value = '', flag) => void (command.pathMap ??= []).push(parsePathMapping(value, flag)) },
+    { flag: '--allow-origin', value: '<origin>', help: "let assets' references fetch from this origin (repeatable, comma separated, or GPU_RENDERER_FARM_ALLOW_ORIGINS); jobs cannot add origins", apply: (command, value = '', flag) => void (command.allowedOrigins ??= []).push(...value.split(',').map((origin) => parseOrigin(origin.trim(), flag))) },
   ],
 };
 

@@ -36,8 +36,14 @@ export async function runFarmCommand(command: FarmCommand, io: { stdout: Progres
     process.once('SIGINT', stop);
     process.once('SIGTERM', stop);
     try {
-      const summary = await runFarmWorker({ ...connection, exitWhenIdle: command.exitWhenIdle, log: io.stderr, signal: controller.signal, ...(command.lockDuration !== undefined ? { lockDuration: command.lockDuration } : {}), ...(command.stalledInterval !== undefined ? { stalledInterval: command.stalledInterval } : {}) });
-      io.stderr.write(`worker ${summary.worker}: stopped; ${summary.written} frames written, ${summary.skipped} found done, ${summary.assetsLoaded} asset loads\n`);
+      const trust = {
+        ...(command.outputRoots !== undefined ? { outputRoots: command.outputRoots } : {}),
+        ...(command.assetRoots !== undefined ? { assetRoots: command.assetRoots } : {}),
+        ...(command.pathMap !== undefined ? { pathMap: command.pathMap } : {}),
+        ...(command.allowedOrigins !== undefined ? { allowedOrigins: command.allowedOrigins } : {}),
+      };
+      const summary = await runFarmWorker({ ...connection, ...trust, exitWhenIdle: command.exitWhenIdle, log: io.stderr, signal: controller.signal, ...(command.lockDuration !== undefined ? { lockDuration: command.lockDuration } : {}), ...(command.stalledInterval !== undefined ? { stalledInterval: command.stalledInterval } : {}) });
+      io.stderr.write(`worker ${summary.worker}: stopped; ${summary.written} frames written, ${summary.skipped} found done, ${summary.assetsLoaded} asset loads${summary.refused > 0 ? `, ${summary.refused} refused (see farm status)` : ''}\n`);
       return 0;
     } finally {
       process.off('SIGINT', stop);

@@ -34,7 +34,12 @@ export type GpuRendererErrorCode =
   /** A feature flag asking for a transport that would add bias (this renderer is unbiased by construction). */
   | 'BIASED_TRANSPORT_REFUSED'
   /** The render farm's job queue (Redis) cannot be reached; `field` names where its address came from. */
-  | 'QUEUE_UNAVAILABLE';
+  | 'QUEUE_UNAVAILABLE'
+  /**
+   * A render farm job a worker will not run: its data breaks the frame schema, or a path it names
+   * (scene, environment map, output) resolves outside the worker's roots; `field` names the job's field.
+   */
+  | 'FARM_JOB_REFUSED';
 
 export class GpuRendererError extends Error {
   readonly code: GpuRendererErrorCode;

@@ -11,7 +11,11 @@ export const defaultRedisUrl = 'redis://127.0.0.1:6379';
 export const defaultFarmQueue = 'gpu-renderer';
 
 export interface FarmConnectionOptions {
-  /** redis://[user:password@]host:port[/db] or rediss://...; default REDIS_URL, else redis://127.0.0.1:6379. */
+  /**
+   * redis://[user:password@]host:port[/db], or rediss://... for TLS (the server's certificate is
+   * checked against Node's CAs; NODE_EXTRA_CA_CERTS adds a private CA); default REDIS_URL, else
+   * redis://127.0.0.1:6379. A password never appears in messages or `farm status`.
+   */
   redis?: string;
   /** The BullMQ queue's name; default 'gpu-renderer'. */
   queue?: string;
@@ -21,6 +25,8 @@ export interface FarmConnection {
   url: string;
   /** Where the URL came from, for errors: '--redis', 'REDIS_URL' or 'default'. */
   source: string;
+  /** The URL without its password, for messages. */
+  shown: string;
   queue: string;
 }
 
@@ -32,13 +38,14 @@ export function resolveFarmConnection(options: FarmConnectionOptions = {}, env: 
   try {
     parsed = new URL(url);
   } catch {
-    throw new GpuRendererError('INVALID_OPTION', `cannot read ${JSON.stringify(url)} as a URL (expected redis://host:port)`, { field: source });
+    throw new GpuRendererError('INVALID_OPTION', `cannot read ${JSON.stringify(redactRedisUrl(url))} as a URL (expected redis://host:port)`, { field: source });
   }
-  if (parsed.protocol !== 'redis:' && parsed.protocol !== 'rediss:') throw new GpuRendererError('INVALID_OPTION', `expected a redis:// or rediss:// URL, got ${JSON.stringify(url)}`, { field: source });
-  if (parsed.hostname === '') throw new GpuRendererError('INVALID_OPTION', `no host in ${JSON.stringify(url)}`, { field: source });
+  const shown = redactRedisUrl(url);
+  if (parsed.protocol !== 'redis:' && parsed.protocol !== 'rediss:') throw new GpuRendererError('INVALID_OPTION', `expected a redis:// or rediss:// URL, got ${JSON.stringify(shown)}`, { field: source });
+  if (parsed.hostname === '') throw new GpuRendererError('INVALID_OPTION', `no host in ${JSON.stringify(shown)}`, { field: source });
   const queue = options.queue ?? defaultFarmQueue;
   if (!/^[A-Za-z0-9._-]+$/.test(queue)) throw new GpuRendererError('INVALID_OPTION', `queue names are letters, digits, '.', '_' and '-', got ${JSON.stringify(queue)}`, { field: '--queue' });
-  return { url, source, queue };
+  return { url, source, shown, queue };
 }
 
 export type Bull = typeof BullMQ;
@@ -81,19 +88,35 @@ export async function connectRedis(connection: FarmConnection, timeoutMs = 3000)
   const Redis = (module.Redis ?? module.default) as RedisConstructor;
   // BullMQ needs maxRetriesPerRequest null for blocking commands; the first connection fails fast instead of retrying.
   const client = new Redis(connection.url, { lazyConnect: true, connectTimeout: timeoutMs, maxRetriesPerRequest: null, retryStrategy: () => null, enableOfflineQueue: false });
-  (client as unknown as { on(event: string, listener: () => void): void }).on('error', () => undefined);
+  // The connection's own error (a refused password, an untrusted certificate) says more than the
+  // "Connection is closed." the failed call reports after it.
+  let cause: Error | undefined;
+  (client as unknown as { on(event: string, listener: (error: Error) => void): void }).on('error', (error) => void (cause ??= error));
   try {
     await client.connect();
     await client.ping();
   } catch (error) {
     client.disconnect();
-    throw new GpuRendererError('QUEUE_UNAVAILABLE', `cannot reach Redis at ${connection.url}: ${(error as Error).message}`, { field: connection.source, cause: error });
+    const why = [cause?.message, (error as Error).message].filter((m, i, all) => m !== undefined && all.indexOf(m) === i).join('; ');
+    throw new GpuRendererError('QUEUE_UNAVAILABLE', `cannot reach Redis at ${connection.shown}: ${why}`, { field: connection.source, cause: cause ?? error });
   }
   return client;
 }
 
 /** The Redis keys of the farm's own records (next to BullMQ's keys of the queue). */
-export function farmKeys(queue: string, job?: string): { jobs: string; job: string; done: string; failed: string } {
+export function farmKeys(queue: string, job?: string): { jobs: string; job: string; done: string; failed: string; refused: string } {
   const base = `gpu-renderer-farm:${queue}`;
-  return { jobs: `${base}:jobs`, job: `${base}:job:${job ?? ''}`, done: `${base}:job:${job ?? ''}:done`, failed: `${base}:job:${job ?? ''}:failed` };
+  return { jobs: `${base}:jobs`, job: `${base}:job:${job ?? ''}`, done: `${base}:job:${job ?? ''}:done`, failed: `${base}:job:${job ?? ''}:failed`, refused: `${base}:refused` };
+}
+
+/** The URL as messages and `farm status` show it: a password is replaced by `***`. */
+export function redactRedisUrl(url: string): string {
+  try {
+    const parsed = new URL(url);
+    if (parsed.password === '') return url;
+    parsed.password = '***';
+    return parsed.href;
+  } catch {
+    return url;
+  }
 }

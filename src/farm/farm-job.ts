@@ -13,6 +13,7 @@
  */
 import { isAbsolute, resolve } from 'node:path';
 import { isSequence, parseRenderArgs, type RenderCommand } from '../cli/args.ts';
+import { ENV_NONE } from '../cli/environment-flags.ts';
 import { GpuRendererError, isGpuRendererError } from '../errors/gpu-renderer-error.ts';
 import type { GltfSequenceItem } from '../sequence/gltf-sequence.ts';
 
@@ -98,11 +99,16 @@ export function parseJobFile(text: string, file: string, baseDir: string): Rende
 export function farmRenderCommand(command: RenderCommand, cwd = process.cwd()): RenderCommand {
   if (command.scenePath === undefined) invalid('scene', 'a farm job renders a glTF asset; name it');
   if (!isSequence(command)) invalid('--frames', 'a farm job is a sequence: give --frames, --turntable, --variants or --cameras');
+  // Origins are the worker's to allow (farm worker --allow-origin): a job carrying them would be refused.
+  if (command.allowedOrigins !== undefined && command.allowedOrigins.length > 0) {
+    invalid('--allow-origin', "a farm job cannot allow network origins: workers fetch only from their own (farm worker --allow-origin or GPU_RENDERER_FARM_ALLOW_ORIGINS)");
+  }
+  const { allowedOrigins: _origins, ...rest } = command;
   return {
-    ...command,
+    ...rest,
     scenePath: resolve(cwd, command.scenePath),
     out: resolve(cwd, command.out),
-    ...(command.env !== undefined ? { env: resolve(cwd, command.env) } : {}),
+    ...(command.env !== undefined ? { env: command.env === ENV_NONE ? ENV_NONE : resolve(cwd, command.env) } : {}),
   };
 }
 

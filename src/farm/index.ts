@@ -4,6 +4,9 @@ export { resolveFarmConnection, defaultRedisUrl, defaultFarmQueue, type FarmConn
 export { parseJobFile, type FarmFrameData } from './farm-job.ts';
 export { submitFarmJob, type FarmSubmitOptions, type FarmSubmission } from './submit.ts';
 export { runFarmWorker, type FarmWorkerOptions, type FarmWorkerSummary } from './worker.ts';
+export { farmTrustEnv, resolveFarmTrust, type FarmTrust, type FarmTrustOptions, type FarmPathMapping } from './worker-trust.ts';
+export { validateFrameData, frameDataLimits } from './frame-data-schema.ts';
+export type { FrameFailure } from './failure-record.ts';
 export { readFarmStatus, formatFarmStatus, type FarmStatus, type FarmJobStatus } from './status.ts';
 // A farm job is a render command: build one from `render` arguments.
 export { parseRenderArgs, type RenderCommand } from '../cli/args.ts';

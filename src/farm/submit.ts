@@ -16,6 +16,7 @@ import { GpuRendererError } from '../errors/gpu-renderer-error.ts';
 import { frameFileExists } from '../io/frame-files.ts';
 import { connectRedis, farmKeys, loadBullmq, resolveFarmConnection, type FarmConnectionOptions } from './connection.ts';
 import { farmRenderCommand, frameRenderSettings, type FarmFrameData } from './farm-job.ts';
+import { validateFrameData } from './frame-data-schema.ts';
 
 export interface FarmSubmitOptions extends FarmConnectionOptions {
   /** The job's name (letters, digits, '.', '_', '-'); default the asset's name and a hash of the job. */
@@ -55,6 +56,7 @@ export async function submitFarmJob(input: RenderCommand, options: FarmSubmitOpt
   const attempts = options.attempts ?? 3;
   const backoffMs = options.backoffMs ?? 5000;
   if (!(await frameFileExists(command.scenePath!))) throw new GpuRendererError('INVALID_OPTION', `no asset at ${command.scenePath}`, { field: 'scene' });
+  // Planned here as a worker will load it: no network origins (they are the workers' own).
   const gltf = await loadGltfForCommand(command.scenePath!, { camera: command.camera, variant: command.variant, animation: command.animation, at: command.at, aspectRatio: command.width / command.height, resourcePolicy: commandResourcePolicy(command), ...(options.stderr ? { stderr: options.stderr } : {}) });
   const { items, paths } = planCommandSequence(gltf, command);
   const name = options.name ?? jobName(command, paths);
@@ -76,9 +78,11 @@ export async function submitFarmJob(input: RenderCommand, options: FarmSubmitOpt
         existing++;
         continue;
       }
+      // Workers validate every job's data; checking it here gives the same errors before anything is queued.
+      const data = validateFrameData(JSON.parse(JSON.stringify({ job: name, index: i, path: paths[i]!, item: items[i]!, render })) as unknown);
       queued.push({
         name: 'frame',
-        data: { job: name, index: i, path: paths[i]!, item: items[i]!, render },
+        data,
         // BullMQ ignores a job whose id exists: resubmitting enqueues nothing twice (--overwrite: a new round of ids).
         opts: { jobId: command.overwrite ? `${name}.${i}.r${round}` : `${name}.${i}`, attempts, backoff: { type: 'exponential', delay: backoffMs }, removeOnComplete: false, removeOnFail: false },
       });

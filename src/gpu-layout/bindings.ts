@@ -52,6 +52,7 @@ export const pathTracerBindings = {
   // Group 3: transport state, per dispatch.
   paths: { group: G.transport, binding: 0, kind: 'storage', access: 'read_write', type: 'array<PathRecord>', doc: 'every path of the wave: state, next ray and its hit, pending shadow ray, sample' },
   queues: { group: G.transport, binding: 1, kind: 'storage', access: 'read_write', type: 'array<atomic<u32>>', doc: 'statistics, per-bounce queue lengths, then the ray and shadow queues (path slots)' },
+  shadingDispatch: { group: G.transport, binding: 2, kind: 'storage', access: 'read_write', type: 'array<u32>', doc: 'per bounce, the workgroup counts of its shading dispatch (indirect arguments: x, y, z), sized from its queue lengths' },
   film: { group: G.transport, binding: 7, kind: 'storage', access: 'read_write', type: 'array<FilmPixel>', doc: 'full-frame accumulation: radiance sum, sample count' },
   filmAovs: { group: G.transport, binding: 11, kind: 'storage', access: 'read_write', type: 'array<FilmAovPixel>', doc: 'AOV sums per pixel' },
   wave: { group: G.transport, binding: 9, kind: 'uniform', dynamic: true, type: 'WaveUniforms', doc: 'per-wave constants' },

@@ -84,6 +84,12 @@ export const russianRouletteStartDepth = 3;
 /** Workgroup size of every 1-D wavefront kernel. */
 export const rendererWavefrontComputeWorkgroupSize = 64;
 
+/** Words of one indirect dispatch's arguments (workgroups in x, y and z; WebGPU §21.2.2). */
+export const indirectDispatchWords = 3;
+
+/** Bytes of one indirect dispatch's arguments. */
+export const indirectDispatchBytes = indirectDispatchWords * 4;
+
 /** Uniform slots bound with dynamic offsets sit on this alignment (WebGPU's guaranteed minimum). */
 export const dynamicUniformStride = 256;
 
@@ -316,6 +322,7 @@ export const bvhBuildConstants = {
 export const gpuConstants: Readonly<Record<string, number>> = Object.freeze({
   QUEUE_COUNTER_COUNT: queueCounterCount,
   WORKGROUP_SIZE: rendererWavefrontComputeWorkgroupSize,
+  INDIRECT_DISPATCH_WORDS: indirectDispatchWords,
   RUSSIAN_ROULETTE_DEPTH: russianRouletteStartDepth,
   BVH_STACK_SIZE: bvhTraversalStackSize,
   INDEX_NONE,

@@ -31,6 +31,27 @@ export function refuse(site: ResourceSite, message: string, cause?: unknown): ne
   throw new GpuRendererError(site.code, message, cause === undefined ? { field: site.field } : { field: site.field, cause });
 }
 
+const reachRefusals = new WeakSet<object>();
+
+/**
+ * A refusal of where a read would go (outside the asset's folder or the policy's root, through a
+ * link out, an origin or scheme not allowed), as opposed to what a resource holds: callers that
+ * confine loads (farm workers) tell the two apart with `isReachRefusal`.
+ */
+export function refuseReach(site: ResourceSite, message: string, cause?: unknown): never {
+  const error = new GpuRendererError(site.code, message, cause === undefined ? { field: site.field } : { field: site.field, cause });
+  reachRefusals.add(error);
+  throw error;
+}
+
+/** Whether `error`, or an error it was caused by, is a `refuseReach` refusal. */
+export function isReachRefusal(error: unknown): boolean {
+  for (let e = error, depth = 0; typeof e === 'object' && e !== null && depth < 8; e = (e as { cause?: unknown }).cause, depth++) {
+    if (reachRefusals.has(e)) return true;
+  }
+  return false;
+}
+
 function formatBytes(n: number): string {
   if (n >= 2 ** 30) return `${(n / 2 ** 30).toFixed(1)} GiB`;
   if (n >= 2 ** 20) return `${(n / 2 ** 20).toFixed(1)} MiB`;

@@ -25,10 +25,10 @@ import { GpuRendererError } from '../errors/gpu-renderer-error.ts';
 import { describe } from '../errors/validate.ts';
 import { decodeDataUri } from './data-uri.ts';
 import { isNodeRuntime, nodeModule } from './platform.ts';
-import { DecodeBudget, refuse, type ResolvedResourcePolicy, type ResourceSite } from './resource-limits.ts';
+import { DecodeBudget, refuse, refuseReach, type ResolvedResourcePolicy, type ResourceSite } from './resource-limits.ts';
 import { fetchBytes, readLocalFile } from './resource-read.ts';
 
-export { DecodeBudget, refuse, type ResolvedResourcePolicy, type ResourceSite } from './resource-limits.ts';
+export { DecodeBudget, isReachRefusal, refuse, type ResolvedResourcePolicy, type ResourceSite } from './resource-limits.ts';
 
 /** The `resourcePolicy` option of every loader. */
 export interface ResourcePolicy {
@@ -212,10 +212,10 @@ export function resolveReference(uri: string, asset: URL | undefined, policy: Re
     if (isAllowedOrigin(url, policy)) return url;
     if ((scheme === 'http' || scheme === 'https') && folder !== undefined && isInsideFolder(url, folder) && asset.protocol === url.protocol) return url;
     if (scheme === 'http' || scheme === 'https') {
-      refuse(site, `${shown} is on ${url.origin}, which the resource policy does not allow (resourcePolicy.allowedOrigins; CLI --allow-origin)`);
+      refuseReach(site, `${shown} is on ${url.origin}, which the resource policy does not allow (resourcePolicy.allowedOrigins; CLI --allow-origin)`);
     }
-    if (scheme.length === 1) refuse(site, `${shown} is an absolute path; references must be relative to the asset's folder`);
-    refuse(site, `${shown}: ${scheme}: URIs are not read; references are relative to the asset's folder, data: URIs, or URLs of allowed origins`);
+    if (scheme.length === 1) refuseReach(site, `${shown} is an absolute path; references must be relative to the asset's folder`);
+    refuseReach(site, `${shown}: ${scheme}: URIs are not read; references are relative to the asset's folder, data: URIs, or URLs of allowed origins`);
   }
   if (uri.startsWith('//') || uri.startsWith('\\\\')) {
     // A network-path reference (RFC 3986 section 4.2): another host with the asset's scheme.
@@ -226,9 +226,9 @@ export function resolveReference(uri: string, asset: URL | undefined, policy: Re
       url = undefined;
     }
     if (url !== undefined && isAllowedOrigin(url, policy)) return url;
-    refuse(site, `${shown} names another host; references must be relative to the asset's folder (or on an allowed origin)`);
+    refuseReach(site, `${shown} names another host; references must be relative to the asset's folder (or on an allowed origin)`);
   }
-  if (uri.startsWith('/') || uri.startsWith('\\')) refuse(site, `${shown} is an absolute path; references must be relative to the asset's folder`);
+  if (uri.startsWith('/') || uri.startsWith('\\')) refuseReach(site, `${shown} is an absolute path; references must be relative to the asset's folder`);
   if (folder === undefined) refuse(site, `${shown} cannot be resolved against ${asset.protocol} ${asset.protocol === 'data:' ? 'data' : 'URLs'}`);
   // Each path segment, percent-decoded, must be a plain name: no encoded separator, NUL or malformed escape.
   const path = uri.replace(/[?#].*$/s, '');
@@ -247,7 +247,7 @@ export function resolveReference(uri: string, asset: URL | undefined, policy: Re
   } catch (error) {
     refuse(site, `invalid URI ${shown}`, error);
   }
-  if (!isInsideFolder(url, folder)) refuse(site, `${shown} resolves to ${url.href}, outside the asset's folder ${folder.href}`);
+  if (!isInsideFolder(url, folder)) refuseReach(site, `${shown} resolves to ${url.href}, outside the asset's folder ${folder.href}`);
   return url;
 }
 
@@ -256,7 +256,7 @@ export async function readSource(url: URL, policy: ResolvedResourcePolicy, site:
   signal?.throwIfAborted();
   if (url.protocol === 'data:') return dataBytes(url.href, policy, site);
   if (policy.root !== undefined && !isInsideFolder(url, policy.root) && !isAllowedOrigin(url, policy)) {
-    refuse(site, `${url.href} lies outside the resource policy's root ${policy.root.href}`);
+    refuseReach(site, `${url.href} lies outside the resource policy's root ${policy.root.href}`);
   }
   return readLocation(url, policy.root !== undefined && !isAllowedOrigin(url, policy) ? [policy.root] : [], policy, site, signal, url, url.protocol === 'file:' ? undefined : url.href);
 }
@@ -286,7 +286,7 @@ export async function readReference(uri: string, asset: URL | undefined, policy:
   const shown = JSON.stringify(uri.length > 120 ? `${uri.slice(0, 120)}...` : uri);
   // The root bounds every read, the asset's references too (an asset whose folder is a link out of the root reads nothing there).
   const rooted = policy.root !== undefined && !isAllowedOrigin(url, policy);
-  if (rooted && !isInsideFolder(url, policy.root!)) refuse(site, `${shown} (${url.href}) lies outside the resource policy's root ${policy.root!.href}`);
+  if (rooted && !isInsideFolder(url, policy.root!)) refuseReach(site, `${shown} (${url.href}) lies outside the resource policy's root ${policy.root!.href}`);
   const confines = [...(folder !== undefined && isInsideFolder(url, folder) ? [folder] : []), ...(rooted ? [policy.root!] : [])];
   return readLocation(url, confines, policy, site, signal, asset!, `${shown} (${url.href})`);
 }

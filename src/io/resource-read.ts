@@ -9,7 +9,7 @@ import type * as NodePath from 'node:path';
 import type * as NodeUrl from 'node:url';
 import { GpuRendererError } from '../errors/gpu-renderer-error.ts';
 import { isNodeRuntime, nodeModule } from './platform.ts';
-import { refuse, type ResolvedResourcePolicy, type ResourceSite } from './resource-limits.ts';
+import { refuse, refuseReach, type ResolvedResourcePolicy, type ResourceSite } from './resource-limits.ts';
 
 function describeFsError(error: unknown): string {
   const e = error as { code?: string; message?: string };
@@ -66,7 +66,7 @@ export async function readLocalFile(url: URL, confines: readonly URL[], policy: 
     } catch (error) {
       refuse(site, `cannot resolve the folder ${confine.href}: ${describeFsError(error)}`, error);
     }
-    if (!pathInside(path, realRoot, real)) refuse(site, `${shown} leads (through a symbolic link) to ${real}, outside the folder ${realRoot}`);
+    if (!pathInside(path, realRoot, real)) refuseReach(site, `${shown} leads (through a symbolic link) to ${real}, outside the folder ${realRoot}`);
     realRoots.push(realRoot);
   }
   signal?.throwIfAborted();
@@ -82,7 +82,7 @@ export async function readLocalFile(url: URL, confines: readonly URL[], policy: 
     if (realRoots.length > 0 && process.platform === 'linux') {
       // What was opened, whatever happened to the path since realpath().
       const opened = await fs.readlink(`/proc/self/fd/${handle.fd}`).catch(() => undefined);
-      if (opened !== undefined && opened.startsWith('/') && realRoots.some((root) => !pathInside(path, root, opened))) refuse(site, `${shown} was replaced by a link to ${opened} while being opened`);
+      if (opened !== undefined && opened.startsWith('/') && realRoots.some((root) => !pathInside(path, root, opened))) refuseReach(site, `${shown} was replaced by a link to ${opened} while being opened`);
     }
     policy.budget?.charge(stat.size, site, `the ${stat.size} bytes of ${shown}`);
     const out = new Uint8Array(stat.size);
@@ -141,12 +141,12 @@ export async function fetchBytes(
     } catch (error) {
       refuse(site, `${current.href} redirects to an invalid URL`, error);
     }
-    if (!redirectOk(next)) refuse(site, `${current.href} redirects to ${next.href}, where this load may not go (resourcePolicy.allowedOrigins)`);
+    if (!redirectOk(next)) refuseReach(site, `${current.href} redirects to ${next.href}, where this load may not go (resourcePolicy.allowedOrigins)`);
     current = next;
   }
   if (!manual && response.redirected && response.url !== '' && !redirectOk(new URL(response.url))) {
     await response.body?.cancel().catch(() => undefined);
-    refuse(site, `${url.href} was redirected to ${response.url}, where this load may not go (resourcePolicy.allowedOrigins)`);
+    refuseReach(site, `${url.href} was redirected to ${response.url}, where this load may not go (resourcePolicy.allowedOrigins)`);
   }
   if (!response.ok) {
     await response.body?.cancel().catch(() => undefined);

@@ -1,5 +1,5 @@
 import { GpuRendererError } from '../errors/gpu-renderer-error.ts';
-import { adaptiveListSlots, dynamicUniformStride, queueBufferWords } from '../gpu-layout/constants.ts';
+import { adaptiveListSlots, dynamicUniformStride, indirectDispatchBytes, queueBufferWords } from '../gpu-layout/constants.ts';
 import {
   alphaPrimitiveLayout,
   bvhNodeLayout,
@@ -96,6 +96,7 @@ export function planBuffers(i: BufferPlanInput): Record<PlannedBufferName, Plann
     queues: queue(waveBufferBytes(capacity).queues, 'the statistics and queues'),
     wave: queue((i.wavesPerSubmission ?? maxWavesPerSubmission) * dynamicUniformStride, 'the wave constants'),
     bounce: queue((i.maxDepth + 1) * dynamicUniformStride, 'the bounce constants'),
+    shadingDispatch: queue((i.maxDepth + 1) * indirectDispatchBytes, 'the shading dispatch sizes'),
     film: frame(pixels * filmPixelLayout.size, 'the accumulation buffer (width x height)'),
     filmAovs: frame(perPixel(i.aovs) * filmAovPixelLayout.size, 'the AOV accumulation (width x height)'),
     filmMoments: frame(perPixel(out.moments) * filmMomentsLayout.size, 'the film moments (width x height)'),

@@ -1,4 +1,4 @@
-import { dynamicUniformStride, rendererWavefrontComputeWorkgroupSize } from '../gpu-layout/constants.ts';
+import { dynamicUniformStride, indirectDispatchBytes, rendererWavefrontComputeWorkgroupSize } from '../gpu-layout/constants.ts';
 import type { KernelBindGroups } from './bind-groups.ts';
 import type { DispatchTally } from './dispatch-tally.ts';
 import type { IntegratorKernelSet, WavefrontKernelName } from './pipelines.ts';
@@ -14,13 +14,16 @@ interface Offsets {
 /**
  * Encodes waves into a compute pass: per wave, camera rays, then per bounce (pbrt-v4's wavefront
  * stages, fused where no global barrier separates them) one traversal dispatch (this bounce's
- * closest hits and the previous bounce's shadow rays) and one shading dispatch (material
- * evaluation and scatter), then the accumulation: 2 (maxDepth + 1) + 2 dispatches per wave. All
- * are direct dispatches sized on the CPU, and the kernels stop at their queues' GPU-side lengths:
- * nothing waits on a CPU readback, and no indirect dispatch pays Dawn's validation pass. The
- * traversal loops over its queues with a grid of at most `gridLimit` workgroups; shading covers
- * the wave (one entry per invocation). `waves[i]` uses wave-uniform slot i; bounce d uses bounce
- * slot d.
+ * closest hits and the previous bounce's shadow rays), a one-invocation dispatch that sizes the
+ * shading dispatch from the queue lengths the traversal left, and the shading dispatch (material
+ * evaluation and scatter) itself, indirect, one invocation per queued entry (bounce 0 shades every
+ * path of the wave, directly); then the accumulation: 3 maxDepth + 4 dispatches per wave. Nothing waits on a CPU readback. The
+ * traversal is a direct dispatch of at most `gridLimit` workgroups looping over its queues (a
+ * persistent grid sized to the device, so it needs no sizing pass); shading cannot loop (its body
+ * is too large for a loop: see shade.wesl), so its dispatch is sized to the live entries: a dispatch
+ * covering the wave launched a wave of invocations for every bounce, which a CPU implementation
+ * pays for in full. `waves[i]` uses wave-uniform slot i; bounce d uses bounce slot d and indirect
+ * record d.
  *
  * The megakernel integrator encodes two dispatches per wave instead: one invocation per path runs
  * all its bounces (kernels/megakernel.wesl), then the same accumulation.
@@ -30,6 +33,8 @@ export class WavefrontEncoder {
   private readonly gridLimit: number;
   private readonly integrator: PathTracingIntegrator;
   private readonly pixels: number;
+  /** Indirect arguments of each bounce's shading dispatch (written by the shadingSize kernel). */
+  private readonly shadingDispatch: GPUBuffer | null;
   /** Receives a count of every dispatch (frame diagnostics); replaced per frame. */
   tally: DispatchTally | null = null;
 
@@ -37,7 +42,13 @@ export class WavefrontEncoder {
    * @param gridLimit most workgroups of a grid-stride dispatch (device-sized: enough to fill the
    *   GPU, few on a CPU adapter, whose every workgroup costs a task).
    */
-  constructor(kernels: IntegratorKernelSet<KernelBindGroups>, pixels: number, gridLimit: number, integrator: PathTracingIntegrator = 'wavefront') {
+  constructor(
+    kernels: IntegratorKernelSet<KernelBindGroups>,
+    options: { pixels: number; gridLimit: number; integrator: PathTracingIntegrator; shadingDispatch: GPUBuffer | null },
+  ) {
+    const { pixels, gridLimit, integrator, shadingDispatch } = options;
+    if (integrator === 'wavefront' && !shadingDispatch) throw new Error('the wavefront integrator needs the shading dispatch buffer');
+    this.shadingDispatch = shadingDispatch;
     this.kernels = kernels;
     this.integrator = integrator;
     this.pixels = pixels;
@@ -49,13 +60,24 @@ export class WavefrontEncoder {
     this.kernels = kernels;
   }
 
-  private dispatch(pass: GPUComputePassEncoder, name: WavefrontKernelName, offsets: Offsets, workgroups: number): void {
+  private bind(pass: GPUComputePassEncoder, name: WavefrontKernelName, offsets: Offsets): void {
     const k = this.kernels[name];
     if (!k) throw new Error(`kernel ${name} was not compiled for the ${this.integrator} integrator`);
     pass.setPipeline(k.pipeline);
     k.groups.forEach((group, g) => pass.setBindGroup(g, group, k.dynamic[g]!.map((d) => offsets[d as keyof Offsets])));
+  }
+
+  private dispatch(pass: GPUComputePassEncoder, name: WavefrontKernelName, offsets: Offsets, workgroups: number, invocationsPerWorkgroup = rendererWavefrontComputeWorkgroupSize): void {
+    this.bind(pass, name, offsets);
     pass.dispatchWorkgroups(workgroups);
-    this.tally?.direct(workgroups, rendererWavefrontComputeWorkgroupSize);
+    this.tally?.direct(workgroups, invocationsPerWorkgroup);
+  }
+
+  /** An indirect dispatch of `name` with the arguments of record `record`; `upperBound` workgroups at most. */
+  private dispatchIndirect(pass: GPUComputePassEncoder, name: WavefrontKernelName, offsets: Offsets, record: number, upperBound: number): void {
+    this.bind(pass, name, offsets);
+    pass.dispatchWorkgroupsIndirect(this.shadingDispatch!, record * indirectDispatchBytes);
+    this.tally?.indirect(upperBound);
   }
 
   /** Workgroups covering `items` invocations, one each. */
@@ -88,7 +110,13 @@ export class WavefrontEncoder {
       o.bounce = d * dynamicUniformStride;
       // Each path queues at most one ray and one shadow ray per bounce.
       this.dispatch(pass, 'trace', o, this.grid(d === 0 ? paths : 2 * paths));
-      this.dispatch(pass, 'shade', o, WavefrontEncoder.cover(paths));
+      if (d === 0) {
+        // Every camera ray hits or escapes: bounce 0 shades the whole wave, no sizing needed.
+        this.dispatch(pass, 'shade', o, WavefrontEncoder.cover(paths));
+      } else {
+        this.dispatch(pass, 'shadingSize', o, 1, 1);
+        this.dispatchIndirect(pass, 'shade', o, d, WavefrontEncoder.cover(paths));
+      }
     }
   }
 }

@@ -11,6 +11,7 @@ import type { PathTracingIntegrator } from './types.ts';
 export const wavefrontKernels = {
   camera: { program: 'camera', entryPoint: 'generate_camera_rays' },
   trace: { program: 'trace', entryPoint: 'trace_rays' },
+  shadingSize: { program: 'shadingSize', entryPoint: 'size_shading' },
   shade: { program: 'shade', entryPoint: 'shade_hits' },
   accumulate: { program: 'accumulate', entryPoint: 'accumulate_samples' },
   megakernel: { program: 'megakernel', entryPoint: 'trace_paths' },
@@ -20,7 +21,7 @@ export type WavefrontKernelName = keyof typeof wavefrontKernels;
 
 /** The kernels each integrator dispatches (only those are compiled). */
 export const integratorKernels = {
-  wavefront: ['camera', 'trace', 'shade', 'accumulate'],
+  wavefront: ['camera', 'trace', 'shadingSize', 'shade', 'accumulate'],
   megakernel: ['megakernel', 'accumulate'],
 } as const satisfies Record<PathTracingIntegrator, readonly WavefrontKernelName[]>;
 

@@ -49,6 +49,7 @@ export function uploadRendererResources(
     bounce: BufferUsage.UNIFORM | BufferUsage.COPY_DST,
     displayUniforms: BufferUsage.UNIFORM | BufferUsage.COPY_DST,
     queues: S | BufferUsage.COPY_SRC | BufferUsage.COPY_DST,
+    shadingDispatch: S | BufferUsage.INDIRECT,
     film: S | BufferUsage.COPY_SRC | BufferUsage.COPY_DST,
     filmAovs: S | BufferUsage.COPY_SRC | BufferUsage.COPY_DST,
     filmMoments: S | BufferUsage.COPY_SRC | BufferUsage.COPY_DST,

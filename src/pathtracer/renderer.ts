@@ -84,7 +84,7 @@ export async function createWavefrontPathTracingComputeRenderer(options: Wavefro
     checkBufferLimits(limits, plan);
     const wavePaths = Math.min(maxWavePaths, config.width * config.height * config.samplesPerPixel);
     const initialPlan = planBuffers({ ...estimate, materialCells: prepared.materials.byteLength / 16, lightCount: prepared.lightCount, lightHeapCells: lighting.heap.byteLength / 16, primitiveCount: prepared.primitiveCount, wavePaths });
-    const features = specialization === 'off' ? allShaderFeatures : sceneFeatures(prepared, lighting, config);
+    const features = specialization === 'off' ? allShaderFeatures : sceneFeatures(prepared, lighting, config, acquired);
     const [pipelines, adaptivePipelines, denoisePipelines] = await Promise.all([
       pathTracerPipelines(acquired.device, features, config.integrator),
       config.output.adaptive ? createAdaptivePipelines(acquired.device, features) : null,
@@ -142,7 +142,12 @@ class WavefrontRenderer extends EventTarget implements WavefrontPathTracingRende
     const { resources, resourceMap: map, atlasTexture, environmentTexture, textureBytes } = uploadRendererResources(device, b, prepared, lighting, plan);
     this.atlasTexture = atlasTexture;
     this.environmentTexture = environmentTexture;
-    const encoderOfWaves = new WavefrontEncoder(createKernelBindGroups(device, pipelines.kernels, map), config.width * config.height, gridWorkgroupLimit(acquired.softwareAdapter, device.limits), config.integrator);
+    const encoderOfWaves = new WavefrontEncoder(createKernelBindGroups(device, pipelines.kernels, map), {
+      pixels: config.width * config.height,
+      gridLimit: gridWorkgroupLimit(acquired.softwareAdapter, device.limits),
+      integrator: config.integrator,
+      shadingDispatch: resources.shadingDispatch,
+    });
     const out = config.output;
     const display = new FilmDisplay(device, pipelines.resolve, map, out.denoise ? resources.denoised : undefined);
     if (out.denoise?.present === 'denoised') display.source = 'denoised';

@@ -55,8 +55,11 @@ export function outputFeatures(config: WavefrontPathTracingComputeConfig): { aov
   return { aovs: config.aovs || denoiser.aovs, moments: config.aovs || denoiser.moments || config.output.adaptive !== null };
 }
 
-/** The shader features a scene needs; everything else is compiled out. */
-export function sceneFeatures(prepared: PreparedScene, lighting: GpuLighting, config: WavefrontPathTracingComputeConfig): ShaderFeatures {
+/**
+ * The shader features a scene needs on a device; everything else is compiled out. The device
+ * only chooses how statistics are reduced (a CPU adapter adds them per invocation).
+ */
+export function sceneFeatures(prepared: PreparedScene, lighting: GpuLighting, config: WavefrontPathTracingComputeConfig, device: { softwareAdapter: boolean }): ShaderFeatures {
   return {
     FEATURE_ANALYTIC_SHAPES: prepared.uses.analyticShapes,
     FEATURE_ALPHA_TEST: prepared.uses.alphaTest,
@@ -73,6 +76,7 @@ export function sceneFeatures(prepared: PreparedScene, lighting: GpuLighting, co
     FEATURE_FILM_MOMENTS: outputFeatures(config).moments,
     FEATURE_ADAPTIVE_SAMPLING: config.output.adaptive !== null,
     ...materialFeatures(prepared.uses.materials),
+    FEATURE_WORKGROUP_TALLIES: !device.softwareAdapter,
   };
 }
 

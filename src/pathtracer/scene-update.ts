@@ -78,7 +78,8 @@ export async function prepareSceneUpdate(
   const lighting = buildGpuLighting({ config: lightingConfig, triangles: { records: prepared.lights, count: prepared.lightCount }, sceneCenter: prepared.sceneCenter, sceneRadius: prepared.sceneRadius });
   const plan = planBuffers({ ...estimate, lightCount: prepared.lightCount, lightHeapCells: lighting.heap.byteLength / 16, primitiveCount: prepared.primitiveCount });
   checkBufferLimits(limits, plan);
-  const features = sceneFeatures(prepared, lighting, next);
+  // The device's choice stays what the kernels were built with.
+  const features = sceneFeatures(prepared, lighting, next, { softwareAdapter: !sources.features.FEATURE_WORKGROUP_TALLIES });
   const missing = (Object.keys(features) as (keyof ShaderFeatures)[]).filter((k) => features[k] && !sources.features[k]);
   if (missing.length > 0) {
     throw new GpuRendererError(

@@ -25,6 +25,11 @@ export const shaderFeatures = {
   // KHR material extensions (materials/extensions/): each compiles in when a material uses it.
   ...extensionFeatures(),
   FEATURE_ENERGY_COMPENSATION: { default: true, doc: 'multiple-scattering energy compensation of rough microfacet lobes' },
+  // The device, not the scene: how kernels reduce per-frame statistics.
+  FEATURE_WORKGROUP_TALLIES: {
+    default: true,
+    doc: 'frame diagnostics are summed per workgroup (one barrier, then one set of global atomics per workgroup), as suits a GPU; off on a CPU adapter, where each invocation adds its own (a barrier there costs more than the atomics: 4x on SwiftShader)',
+  },
 } as const;
 
 type ExtensionFeatureName = MaterialExtension['feature']['name'];

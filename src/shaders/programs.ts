@@ -43,6 +43,7 @@ export interface ProgramSpec {
 export const programSpecs = {
   camera: { module: 'package::pathtracer::kernels::camera', group: 'pathTracer' },
   trace: { module: 'package::pathtracer::kernels::trace', group: 'pathTracer' },
+  shadingSize: { module: 'package::pathtracer::kernels::shading_size', group: 'pathTracer' },
   shade: { module: 'package::pathtracer::kernels::shade', group: 'pathTracer' },
   accumulate: { module: 'package::film::accumulation::accumulate', group: 'pathTracer' },
   // The megakernel integrator (integrator: 'megakernel'): the stage functions above in one loop.

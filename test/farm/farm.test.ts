@@ -40,12 +40,12 @@ interface Worker {
   exited: Promise<number | null>;
 }
 
-function startWorker(redis: string): Worker {
+function startWorker(redis: string, dir: string): Worker {
   // Short locks so a killed worker's frame is taken over within seconds (production default: 30 s).
   // GPU_RENDERER_CLI_STDERR_COLUMNS marks the CLI's rendering process: the worker renders in the
   // process spawned here (no second one behind it), so SIGKILL stops the renderer itself.
   const env = { ...process.env, GPU_RENDERER_CLI_STDERR_COLUMNS: '' };
-  const child = spawn(process.execPath, [cli, 'farm', 'worker', '--redis', redis, '--lock-duration', '2000', '--stalled-interval', '500', '--exit-when-idle'], { stdio: ['ignore', 'ignore', 'pipe'], env });
+  const child = spawn(process.execPath, [cli, 'farm', 'worker', '--redis', redis, '--lock-duration', '2000', '--stalled-interval', '500', '--exit-when-idle', '--output-root', dir, '--asset-root', dir], { stdio: ['ignore', 'ignore', 'pipe'], env });
   const worker: Worker = { child, log: '', exited: new Promise((resolve) => child.on('close', (code) => resolve(code))) };
   child.stderr!.setEncoding('utf8').on('data', (d: string) => (worker.log += d));
   return worker;
@@ -77,8 +77,8 @@ test('two workers render an 8-frame job; one killed mid-frame, every frame arriv
   assert.equal(submitted.code, 0);
   assert.match(submitted.stdout, /submitted tube8: 8 frames, 8 queued/);
 
-  const a = startWorker(redis.url);
-  const b = startWorker(redis.url);
+  const a = startWorker(redis.url, dir);
+  const b = startWorker(redis.url, dir);
   const workers = [a, b];
   t.after(() => {
     for (const w of workers) if (w.child.exitCode === null) w.child.kill('SIGKILL');
@@ -118,7 +118,7 @@ test('two workers render an 8-frame job; one killed mid-frame, every frame arriv
   // Once the cause is gone, submitting the job again retries the failed frame.
   await rm(join(dir, 'blocker'));
   assert.equal((await farm(['submit', ...blocked, '--redis', redis.url, '--name', 'blocked'])).code, 0);
-  const c = startWorker(redis.url);
+  const c = startWorker(redis.url, dir);
   workers.push(c);
   assert.equal(await c.exited, 0, c.log);
   assert.match(c.log, /frame 3 \(blocked #0\) wrote /);
@@ -146,7 +146,7 @@ test('bad jobs: unknown asset, bad frame ranges, bad job files and unreachable R
   assert.throws(() => parseCliArgs(['farm', 'submit', asset, '--frames', '7-0', '--out', out]), (e: unknown) => e instanceof GpuRendererError && e.field === '--frames' && /ends before it starts/.test(e.message));
   await rejectsWith(farm(['submit', asset, '--frames', '0-7', '--out', out, '--redis', closed]), 'QUEUE_UNAVAILABLE', '--redis', /cannot reach Redis/);
   await rejectsWith(farm(['status', '--redis', closed]), 'QUEUE_UNAVAILABLE', '--redis');
-  await rejectsWith(farm(['worker', '--redis', closed]), 'QUEUE_UNAVAILABLE', '--redis');
+  await rejectsWith(farm(['worker', '--redis', closed, '--output-root', dir, '--asset-root', dir]), 'QUEUE_UNAVAILABLE', '--redis');
   await rejectsWith(farm(['status', '--redis', 'http://127.0.0.1:1']), 'INVALID_OPTION', '--redis', /redis:\/\//);
   const saved = process.env.REDIS_URL;
   process.env.REDIS_URL = closed;

@@ -98,10 +98,12 @@ test('gpuParallelism and transportGuardrails follow the wave plan; the submissio
     assert.equal(s.transportGuardrails.trackedMemoryBytes, s.memory.totalBytes);
     assert.ok(s.transportGuardrails.jobsPerSecond > 0);
     const g = s.gpuParallelism;
-    // Per wave: camera, per bounce (0..maxDepth) one traversal and one shading dispatch, and the
-    // accumulation; all direct (the per-bounce kernels loop over their GPU-side queue lengths).
-    assert.equal(g.directDispatches, waves * (2 * (maxDepth + 1) + 2));
-    assert.equal(g.indirectDispatches, 0);
+    // Per wave: camera, bounce 0's traversal and shading, per later bounce a traversal and the
+    // one-invocation dispatch sizing its shading, and the accumulation, all direct; the shading of
+    // bounces 1..maxDepth is indirect (sized on the GPU from its queue).
+    assert.equal(g.directDispatches, waves * (4 + 2 * maxDepth));
+    assert.equal(g.indirectDispatches, waves * maxDepth);
+    assert.equal(g.largestEstimatedIndirectWorkgroupsPerDispatch, 1, 'an indirect shading dispatch covers at most the wave (64 paths)');
     assert.equal(s.wavePaths, 64);
     assert.equal(g.largestDirectWorkgroupsPerDispatch, 2, '64 paths per wave: a traversal grid covers 64 rays and 64 shadow rays');
     assert.equal(g.physicalCoreCount, null);

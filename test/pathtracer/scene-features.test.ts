@@ -7,7 +7,8 @@ import assert from 'node:assert/strict';
 import { createWavefrontPathTracingComputeRenderer } from '../../src/pathtracer/index.ts';
 import { srgbToLinear } from '../../src/film/tone-mapping.ts';
 import { createCornellBoxScene } from '../../src/scene/cornell-box.ts';
-import type { WavefrontMaterialInput, WavefrontMeshInput, WavefrontPathTracingOptions, WavefrontTextureInput } from '../../src/index.ts';
+import type { WavefrontFrameStats, WavefrontMaterialInput, WavefrontMeshInput, WavefrontPathTracingOptions, WavefrontTextureInput } from '../../src/index.ts';
+import { LUMINANCE_FRACTION_BITS } from '../../src/gpu-layout/constants.ts';
 import { testDevice } from '../helpers/gpu.ts';
 
 const SIZE = 16;
@@ -27,16 +28,20 @@ function square(material: WavefrontMaterialInput | number, extra: Partial<Wavefr
   };
 }
 
-async function render(options: Partial<WavefrontPathTracingOptions>, spp = 16): Promise<Float32Array> {
+async function renderWithStats(options: Partial<WavefrontPathTracingOptions>, spp = 16): Promise<{ radiance: Float32Array; stats: WavefrontFrameStats }> {
   const device = await testDevice();
   const renderer = await createWavefrontPathTracingComputeRenderer({ device, width: SIZE, height: SIZE, samplesPerPixel: spp, seed: 3, maxDepth: 4, camera, environment: { color: [1, 1, 1] }, ...options });
   try {
     const stats = await renderer.renderFrame();
     assert.equal(stats.invalidSamples, 0);
-    return (await renderer.readRadiance()).data;
+    return { radiance: (await renderer.readRadiance()).data, stats };
   } finally {
     renderer.destroy();
   }
+}
+
+async function render(options: Partial<WavefrontPathTracingOptions>, spp = 16): Promise<Float32Array> {
+  return (await renderWithStats(options, spp)).radiance;
 }
 
 /** A 4 x 4 RGBA8 texture of distinct colours, nearest filtering. */
@@ -193,14 +198,25 @@ test('instances render as their flattened world-space geometry, mirroring transf
 
 test('specialisation compiles unused features out without changing the image', async () => {
   const scene = createCornellBoxScene();
-  const specialised = await render({ ...scene, camera: scene.camera, environment: { color: [0, 0, 0] } }, 4);
-  const general = await render({ ...scene, camera: scene.camera, environment: { color: [0, 0, 0] }, shaderSpecialization: 'off' }, 4);
+  const a = await renderWithStats({ ...scene, camera: scene.camera, environment: { color: [0, 0, 0] } }, 4);
+  const b = await renderWithStats({ ...scene, camera: scene.camera, environment: { color: [0, 0, 0] }, shaderSpecialization: 'off' }, 4);
+  const specialised = a.radiance;
+  const general = b.radiance;
   let sum = 0;
   for (let i = 0; i < specialised.length; i++) {
     assert.ok(Math.abs(specialised[i]! - general[i]!) <= 1e-6 * Math.max(1, general[i]!), `value ${i}: ${specialised[i]} vs ${general[i]}`);
     sum += specialised[i]!;
   }
   assert.ok(sum > 0);
+  // The frame diagnostics too: a CPU adapter's kernels tally them per invocation, the general
+  // kernels (every feature in) per workgroup. Each fixed-point add rounds by at most half a unit
+  // (2^-16), so the means per pixel sample differ by at most that.
+  const bound = 0.5 * 2 ** -LUMINANCE_FRACTION_BITS;
+  for (const key of ['totalLuminance', 'emitterLuminance', 'environmentLuminance'] as const) {
+    assert.ok(Math.abs(a.stats.terminalRadiance[key] - b.stats.terminalRadiance[key]) <= bound, `${key}: ${a.stats.terminalRadiance[key]} vs ${b.stats.terminalRadiance[key]}`);
+  }
+  assert.ok(a.stats.terminalRadiance.emitterLuminance > 0, 'some samples see the light');
+  assert.equal(a.stats.terminalRadiance.samples, b.stats.terminalRadiance.samples);
 });
 
 test('first-hit AOVs: albedo, shading normal and depth of the first non-specular hit', async () => {

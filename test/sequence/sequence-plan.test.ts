@@ -116,7 +116,8 @@ test('farm: job files become render commands with paths against the file; Redis 
   throwsField(() => parseJobFile('{"out": "f-#.png", "frames": "0-1"}', 'j.json', '/'), '/scene');
   throwsField(() => parseJobFile('[1]', 'j.json', '/'), '');
   throwsField(() => parseJobFile('{"scene": "a.glb", "frames": "0-1", "out": "f-#.png", "width": {"px": 3}}', 'j.json', '/'), '/width');
-  assert.deepEqual(resolveFarmConnection({}, {}), { url: 'redis://127.0.0.1:6379', source: 'default', queue: 'gpu-renderer' });
+  assert.deepEqual(resolveFarmConnection({}, {}), { url: 'redis://127.0.0.1:6379', source: 'default', shown: 'redis://127.0.0.1:6379', queue: 'gpu-renderer' });
+  assert.equal(resolveFarmConnection({ redis: 'rediss://farm:s3cret@r:1' }, {}).shown, 'rediss://farm:***@r:1', 'a password is never shown');
   assert.equal(resolveFarmConnection({}, { REDIS_URL: 'redis://cache:6380' }).url, 'redis://cache:6380');
   assert.equal(resolveFarmConnection({ redis: 'rediss://r:1', queue: 'films' }, { REDIS_URL: 'redis://x:1' }).source, '--redis');
   throwsField(() => resolveFarmConnection({ redis: 'not a url' }, {}), '--redis');
