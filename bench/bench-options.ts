@@ -15,6 +15,9 @@
  *   --output-only    | BENCH_ONLY=output    run the production-output benchmark alone
  *   --no-gpu         | BENCH_GPU=0          skip the GPU figures (bench/gpu.ts: the path tracer's defaults at 1080p)
  *   --gpu-only       | BENCH_ONLY=gpu       run the GPU figures alone (BENCH_GPU_SCALE: fraction of their samples)
+ *   --browser        | BENCH_BROWSER=1      add the browser section (ours beside three-gpu-pathtracer in Chromium; off by
+ *                                            default: minutes; BENCH_BROWSER_SECONDS, _SIZE, _SCENES, _REFERENCE_SPP: bench/browser.ts)
+ *   --browser-only   | BENCH_ONLY=browser   run the browser section alone
  * The command line wins over the environment. BENCH_SPP is read by the path tracer harnesses.
  */
 import { parseArgs } from 'node:util';
@@ -39,6 +42,8 @@ export interface BenchOptions {
   output: boolean;
   /** The GPU figures (bench/gpu.ts). */
   gpu: boolean;
+  /** The browser section (bench/browser.ts): opt-in. */
+  browser: boolean;
   /** Run the path tracer comparison (off with --bvh-only / --gltf-only). */
   pathTracer: boolean;
 }
@@ -89,6 +94,9 @@ export function parseBenchOptions(
       'output-only': { type: 'boolean' },
       'no-gpu': { type: 'boolean' },
       'gpu-only': { type: 'boolean' },
+      browser: { type: 'boolean' },
+      'no-browser': { type: 'boolean' },
+      'browser-only': { type: 'boolean' },
     },
     strict: true,
     allowPositionals: false,
@@ -105,7 +113,7 @@ export function parseBenchOptions(
   const roundsText = values.rounds ?? env.BENCH_ROUNDS;
   const rounds = roundsText === undefined || roundsText === '' ? DEFAULT_ROUNDS : positiveInteger(roundsText, values.rounds !== undefined ? '--rounds' : 'BENCH_ROUNDS');
   // One part alone: --x-only on the command line, else BENCH_ONLY=x.
-  const parts = ['bvh', 'gltf', 'raster', 'lighting', 'output', 'gpu'] as const;
+  const parts = ['bvh', 'gltf', 'raster', 'lighting', 'output', 'gpu', 'browser'] as const;
   const flagged = parts.filter((p) => values[`${p}-only`] === true);
   if (flagged.length > 1) throw new Error(`--${flagged[0]}-only and --${flagged[1]}-only exclude each other`);
   const fromEnv = parts.find((p) => env.BENCH_ONLY?.toLowerCase() === p);
@@ -122,5 +130,7 @@ export function parseBenchOptions(
   const gpu = on('gpu', env.BENCH_GPU);
   const outputOn = !values['no-output'] && (values.output === true || (env.BENCH_OUTPUT !== undefined && !off(env.BENCH_OUTPUT)));
   const output = only === 'output' || (only === null && outputOn);
-  return { baseline, rounds, bvh, gltf, raster, lighting, output, gpu, pathTracer: only === null };
+  const browserOn = !values['no-browser'] && (values.browser === true || (env.BENCH_BROWSER !== undefined && !off(env.BENCH_BROWSER)));
+  const browser = only === 'browser' || (only === null && browserOn);
+  return { baseline, rounds, bvh, gltf, raster, lighting, output, gpu, browser, pathTracer: only === null };
 }

@@ -44,7 +44,7 @@ let options: BenchOptions;
 try {
   options = parseBenchOptions(process.argv.slice(2), process.env, await readBaselineFile());
 } catch (error) {
-  console.error(`bench: ${(error as Error).message}\nusage: npm run bench -- [--baseline <ref> | --no-baseline] [--rounds <n>] [--no-bvh | --bvh-only] [--no-gltf | --gltf-only] [--no-raster | --raster-only] [--no-lighting | --lighting-only] [--output | --output-only] [--no-gpu | --gpu-only]`);
+  console.error(`bench: ${(error as Error).message}\nusage: npm run bench -- [--baseline <ref> | --no-baseline] [--rounds <n>] [--no-bvh | --bvh-only] [--no-gltf | --gltf-only] [--no-raster | --raster-only] [--no-lighting | --lighting-only] [--output | --output-only] [--no-gpu | --gpu-only] [--browser | --browser-only]`);
   process.exit(2);
 }
 
@@ -232,6 +232,16 @@ if (options.lighting) {
   const { runLightingBenchmark, printLightingBenchmark } = await import('./lighting.ts');
   results.lighting = await runLightingBenchmark();
   printLightingBenchmark(results.lighting as Awaited<ReturnType<typeof runLightingBenchmark>>);
+}
+
+// Browser section (bench/browser.ts: ours beside three-gpu-pathtracer in Chromium): opt in with
+// --browser / BENCH_BROWSER=1 or --browser-only; minutes on SwiftShader.
+if (options.browser) {
+  const { browserBenchOptions, printBrowserBenchmark, runBrowserBenchmark } = await import('./browser.ts');
+  console.log('\nBrowser: ours and three-gpu-pathtracer in one Chromium, equal time per scene (bench/browser.ts)');
+  const browser = await runBrowserBenchmark(browserBenchOptions(process.env));
+  results.browser = browser;
+  printBrowserBenchmark(browser);
 }
 
 results.totalSeconds = (performance.now() - began) / 1000;

@@ -102,3 +102,13 @@ test('output benchmark: opt-in with --output / BENCH_OUTPUT=1, alone with --outp
   const alone = parseBenchOptions(['--output-only'], {}, file);
   assert.deepEqual([alone.output, alone.bvh, alone.gltf, alone.raster, alone.pathTracer], [true, false, false, false, false]);
 });
+
+test('browser section: opt-in with --browser / BENCH_BROWSER=1, alone with --browser-only / BENCH_ONLY=browser', () => {
+  assert.equal(parseBenchOptions([], {}, file).browser, false);
+  assert.equal(parseBenchOptions(['--browser'], {}, file).browser, true);
+  assert.equal(parseBenchOptions([], { BENCH_BROWSER: '1' }, file).browser, true);
+  assert.equal(parseBenchOptions(['--no-browser'], { BENCH_BROWSER: '1' }, file).browser, false);
+  for (const o of [parseBenchOptions(['--browser-only'], {}, file), parseBenchOptions([], { BENCH_ONLY: 'browser' }, file)]) {
+    assert.deepEqual([o.browser, o.bvh, o.gltf, o.raster, o.lighting, o.gpu, o.output, o.pathTracer], [true, false, false, false, false, false, false, false]);
+  }
+});

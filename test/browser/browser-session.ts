@@ -48,11 +48,12 @@ export interface BrowserSession {
   close(): Promise<void>;
 }
 
-export async function openPackagePage(options: { style: string; body: string; viewport: { width: number; height: number } }): Promise<BrowserSession> {
+/** `imports`: more import-map entries (e.g. a peer renderer the page loads from /node_modules/); `args`: Chromium's flags instead of chromiumWebGpuArgs. */
+export async function openPackagePage(options: { style: string; body: string; viewport: { width: number; height: number }; imports?: Record<string, string>; args?: string[] }): Promise<BrowserSession> {
   const { chromium } = await import('playwright-core');
   const built = builtPackageDir(root);
-  const server = await startStaticServer({ root, packageDir: built.dir, page: page(createImportMap(root), options.style, options.body) });
-  const browser = await chromium.launch({ executablePath: chromiumPath, headless: true, args: chromiumWebGpuArgs });
+  const server = await startStaticServer({ root, packageDir: built.dir, page: page({ imports: { ...createImportMap(root).imports, ...options.imports } }, options.style, options.body) });
+  const browser = await chromium.launch({ executablePath: chromiumPath, headless: true, args: options.args ?? chromiumWebGpuArgs });
   const close = async (): Promise<void> => {
     await browser.close();
     await server.close();
