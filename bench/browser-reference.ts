@@ -17,7 +17,7 @@ import { spawnSync } from 'node:child_process';
 import { fileURLToPath } from 'node:url';
 import { createWavefrontPathTracingComputeRenderer } from '../src/index.ts';
 import type { WavefrontPathTracingOptions } from '../src/index.ts';
-import { ourSceneOptions, type BenchScene } from './browser-scenes.ts';
+import { ourSceneOptions, pinholeRay, type BenchScene } from './browser-scenes.ts';
 
 export interface Reference {
   /** Linear RGB, row 0 at the top. */
@@ -33,16 +33,10 @@ const root = fileURLToPath(new URL('..', import.meta.url));
 export function analyticReference(scene: BenchScene, width: number, height: number, n = 8): Float32Array {
   const a = scene.analytic;
   if (!a) throw new Error(`${scene.name} has no analytic answer`);
-  const { position: eye, target, fovYDegrees } = scene.camera;
-  const sub = (p: number[], q: number[]) => p.map((v, i) => v - q[i]!);
+  const eye = scene.camera.position;
+  const ray = pinholeRay(scene.camera, width, height);
   const norm = (p: number[]) => { const l = Math.hypot(...p); return p.map((v) => v / l); };
-  const cross = (p: number[], q: number[]) => [p[1]! * q[2]! - p[2]! * q[1]!, p[2]! * q[0]! - p[0]! * q[2]!, p[0]! * q[1]! - p[1]! * q[0]!];
-  const forward = norm(sub(target, eye));
-  const right = norm(cross(forward, [0, 1, 0]));
-  const up = cross(right, forward);
-  const tanY = Math.tan((fovYDegrees * Math.PI) / 360);
-  const tanX = tanY * (width / height);
-  const oc = sub(eye, a.sphere.center);
+  const oc = eye.map((e, k) => e - a.sphere.center[k]!);
   const c = oc.reduce((s, v) => s + v * v, 0) - a.sphere.radius ** 2;
   const out = new Float32Array(width * height * 3);
   for (let y = 0; y < height; y++) {
@@ -50,9 +44,7 @@ export function analyticReference(scene: BenchScene, width: number, height: numb
       let covered = 0;
       for (let j = 0; j < n; j++) {
         for (let i = 0; i < n; i++) {
-          const u = (2 * (x + (i + 0.5) / n)) / width - 1;
-          const v = 1 - (2 * (y + (j + 0.5) / n)) / height;
-          const d = norm(forward.map((f, k) => f + u * tanX * right[k]! + v * tanY * up[k]!));
+          const d = norm(ray(x + (i + 0.5) / n, y + (j + 0.5) / n));
           const b = oc.reduce((s, w, k) => s + w * d[k]!, 0);
           if (b * b - c >= 0 && -b - Math.sqrt(b * b - c) > 0) covered++;
         }

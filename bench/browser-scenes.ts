@@ -164,3 +164,30 @@ export function ourSceneOptions(scene: BenchScene): Record<string, unknown> {
     maxDepth: scene.maxDepth,
   };
 }
+
+/**
+ * The pinhole camera's ray through image point (x, y) in pixels (y down; not normalised): the
+ * convention of both renderers (vertical fov, square pixels, up = +y).
+ */
+export function pinholeRay(camera: BenchScene['camera'], width: number, height: number): (x: number, y: number) => number[] {
+  const { position: eye, target, fovYDegrees } = camera;
+  const forward = normalize(target.map((t, i) => t - eye[i]!));
+  const right = normalize(cross(forward, [0, 1, 0]));
+  const up = cross(right, forward);
+  const tanY = Math.tan((fovYDegrees * Math.PI) / 360);
+  const tanX = tanY * (width / height);
+  return (x, y) => {
+    const u = (2 * x) / width - 1;
+    const v = 1 - (2 * y) / height;
+    return forward.map((f, k) => f + u * tanX * right[k]! + v * tanY * up[k]!);
+  };
+}
+
+function normalize(p: number[]): number[] {
+  const l = Math.hypot(...p);
+  return p.map((v) => v / l);
+}
+
+function cross(p: number[], q: number[]): number[] {
+  return [p[1]! * q[2]! - p[2]! * q[1]!, p[2]! * q[0]! - p[0]! * q[2]!, p[0]! * q[1]! - p[1]! * q[0]!];
+}

@@ -16,7 +16,7 @@ import { loadavg } from 'node:os';
 import { chromiumPath, chromiumWebGpuArgs, openPackagePage } from '../test/browser/browser-session.ts';
 import { pageAdapterInfo, runOurs, runPeer, type PageArgs, type PageRun } from './browser-page.ts';
 import { convergedReference, type Reference } from './browser-reference.ts';
-import { browserBenchScenes, ourSceneOptions, type BenchScene, type V3 } from './browser-scenes.ts';
+import { browserBenchScenes, ourSceneOptions, pinholeRay, type BenchScene, type V3 } from './browser-scenes.ts';
 
 export interface BrowserBenchOptions {
   seconds: number;
@@ -82,23 +82,16 @@ export interface BrowserBenchResult {
 export function directLightMask(scene: BenchScene, width: number, height: number, n = 4): Uint8Array {
   const mask = new Uint8Array(width * height);
   if (scene.rectLights.length === 0) return mask;
-  const { position: eye, target, fovYDegrees } = scene.camera;
+  const eye = scene.camera.position;
+  const ray = pinholeRay(scene.camera, width, height);
   const sub = (p: number[], q: number[]) => p.map((v, i) => v - q[i]!);
   const dot = (p: number[], q: number[]) => p.reduce((s, v, i) => s + v * q[i]!, 0);
-  const norm = (p: number[]) => { const l = Math.hypot(...p); return p.map((v) => v / l); };
   const cross = (p: number[], q: number[]) => [p[1]! * q[2]! - p[2]! * q[1]!, p[2]! * q[0]! - p[0]! * q[2]!, p[0]! * q[1]! - p[1]! * q[0]!];
-  const forward = norm(sub(target, eye));
-  const right = norm(cross(forward, [0, 1, 0]));
-  const up = cross(right, forward);
-  const tanY = Math.tan((fovYDegrees * Math.PI) / 360);
-  const tanX = tanY * (width / height);
   for (let y = 0; y < height; y++) {
     for (let x = 0; x < width; x++) {
       let hit = false;
       for (let s = 0; s < n * n && !hit; s++) {
-        const u = (2 * (x + ((s % n) + 0.5) / n)) / width - 1;
-        const v = 1 - (2 * (y + (Math.floor(s / n) + 0.5) / n)) / height;
-        const d = forward.map((f, k) => f + u * tanX * right[k]! + v * tanY * up[k]!);
+        const d = ray(x + ((s % n) + 0.5) / n, y + (Math.floor(s / n) + 0.5) / n);
         for (const l of scene.rectLights) {
           const normal = cross(l.edgeU, l.edgeV);
           const t = dot(sub(l.center, eye), normal) / dot(d, normal);

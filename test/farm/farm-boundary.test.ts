@@ -12,28 +12,15 @@ import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { NodeIO } from '@gltf-transform/core';
-import { parseCliArgs } from '../../src/cli/args.ts';
-import type { FarmCommand } from '../../src/cli/commands.ts';
-import { runFarmCommand } from '../../src/cli/farm-command.ts';
 import { GpuRendererError } from '../../src/errors/gpu-renderer-error.ts';
 import type { FarmStatus } from '../../src/farm/status.ts';
 import { runFarmWorker } from '../../src/farm/worker.ts';
 import { redisTlsUnsupported, startRedis } from '../helpers/redis.ts';
+import { farm } from '../helpers/farm-cli.ts';
 import { createBendingTube } from '../sequence/fixtures.ts';
 
 const cli = fileURLToPath(new URL('../../src/cli/main.ts', import.meta.url));
 const password = 'farm-pw-7c1e';
-
-function capture(): { write(text: string): boolean; text: string } {
-  return { text: '', write(text: string) { this.text += text; return true; } };
-}
-
-async function farm(args: string[]): Promise<{ code: number; stdout: string; stderr: string }> {
-  const stdout = capture();
-  const stderr = capture();
-  const code = await runFarmCommand(parseCliArgs(['farm', ...args]) as FarmCommand, { stdout, stderr });
-  return { code, stdout: stdout.text, stderr: stderr.text };
-}
 
 /** `gpu-renderer farm ...` in a process of its own, with `env` added to this one's. */
 function farmProcess(args: string[], env: Record<string, string | undefined>): Promise<{ code: number | null; stdout: string; stderr: string }> {

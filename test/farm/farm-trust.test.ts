@@ -18,7 +18,6 @@ import { NodeIO } from '@gltf-transform/core';
 import { decode } from 'fast-png';
 import { parseCliArgs, parseRenderArgs, type RenderCommand } from '../../src/cli/args.ts';
 import type { FarmCommand } from '../../src/cli/commands.ts';
-import { runFarmCommand } from '../../src/cli/farm-command.ts';
 import { GpuRendererError } from '../../src/errors/gpu-renderer-error.ts';
 import { connectRedis, farmKeys, loadBullmq, resolveFarmConnection } from '../../src/farm/connection.ts';
 import { farmRenderCommand, frameRenderSettings, type FarmFrameData } from '../../src/farm/farm-job.ts';
@@ -27,18 +26,8 @@ import type { FarmStatus } from '../../src/farm/status.ts';
 import { mapJobPath, parsePathMapping, resolveFarmTrust } from '../../src/farm/worker-trust.ts';
 import { runFarmWorker } from '../../src/farm/worker.ts';
 import { freePort, startRedis } from '../helpers/redis.ts';
+import { capture, farm, rejectsWith } from '../helpers/farm-cli.ts';
 import { createBendingTube } from '../sequence/fixtures.ts';
-
-function capture(): { write(text: string): boolean; text: string } {
-  return { text: '', write(text: string) { this.text += text; return true; } };
-}
-
-async function farm(args: string[]): Promise<{ code: number; stdout: string; stderr: string }> {
-  const stdout = capture();
-  const stderr = capture();
-  const code = await runFarmCommand(parseCliArgs(['farm', ...args]) as FarmCommand, { stdout, stderr });
-  return { code, stdout: stdout.text, stderr: stderr.text };
-}
 
 const tiny = ['--camera', 'Front', '--width', '16', '--height', '16', '--spp', '1', '--max-depth', '1'];
 
@@ -201,16 +190,6 @@ test('a worker refuses every job reaching outside its roots or origins, with not
   assert.match(text, /ref-climbs: .*\n {2}#0 FARM_JOB_REFUSED at render\.scenePath: the asset's references reach outside/);
   assert.match(text, /refused queue job malformed\.0 FARM_JOB_REFUSED at job/);
 });
-
-async function rejectsWith(promise: Promise<unknown>, code: string, field: string, message?: RegExp): Promise<void> {
-  await assert.rejects(promise, (e: unknown) => {
-    assert.ok(e instanceof GpuRendererError, String(e));
-    assert.equal(e.code, code, e.message);
-    assert.equal(e.field, field, e.message);
-    if (message) assert.match(e.message, message);
-    return true;
-  });
-}
 
 test('a worker without an output root or an asset root does not start; the roots also come from the environment', async (t) => {
   const dir = await mkdtemp(join(tmpdir(), 'gpu-renderer-farm-trust-'));

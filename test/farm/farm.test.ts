@@ -13,26 +13,14 @@ import { fileURLToPath } from 'node:url';
 import { NodeIO } from '@gltf-transform/core';
 import { decode } from 'fast-png';
 import { parseCliArgs } from '../../src/cli/args.ts';
-import type { FarmCommand } from '../../src/cli/commands.ts';
-import { runFarmCommand } from '../../src/cli/farm-command.ts';
 import { GpuRendererError } from '../../src/errors/gpu-renderer-error.ts';
 import type { FarmStatus } from '../../src/farm/status.ts';
 import { freePort, startRedis } from '../helpers/redis.ts';
+import { farm, rejectsWith } from '../helpers/farm-cli.ts';
 import { createBendingTube } from '../sequence/fixtures.ts';
 
 const root = fileURLToPath(new URL('../..', import.meta.url));
 const cli = join(root, 'src/cli/main.ts');
-
-function capture(): { write(text: string): boolean; text: string } {
-  return { text: '', write(text: string) { this.text += text; return true; } };
-}
-
-async function farm(args: string[]): Promise<{ code: number; stdout: string; stderr: string }> {
-  const stdout = capture();
-  const stderr = capture();
-  const code = await runFarmCommand(parseCliArgs(['farm', ...args]) as FarmCommand, { stdout, stderr });
-  return { code, stdout: stdout.text, stderr: stderr.text };
-}
 
 interface Worker {
   child: ChildProcess;
@@ -125,16 +113,6 @@ test('two workers render an 8-frame job; one killed mid-frame, every frame arriv
   const retried = JSON.parse((await farm(['status', 'blocked', '--json', '--redis', redis.url, '--wait', '--timeout', '10'])).stdout) as FarmStatus;
   assert.deepEqual(retried.jobs.map((j) => [j.done, j.failed, j.complete]), [[1, 0, true]]);
 });
-
-async function rejectsWith(promise: Promise<unknown>, code: string, field: string, message?: RegExp): Promise<void> {
-  await assert.rejects(promise, (e: unknown) => {
-    assert.ok(e instanceof GpuRendererError, String(e));
-    assert.equal(e.code, code, e.message);
-    assert.equal(e.field, field, e.message);
-    if (message) assert.match(e.message, message);
-    return true;
-  });
-}
 
 test('bad jobs: unknown asset, bad frame ranges, bad job files and unreachable Redis are typed errors naming the field', async (t) => {
   const dir = await mkdtemp(join(tmpdir(), 'gpu-renderer-farm-'));
