@@ -76,7 +76,7 @@ export {
   createWavefrontPathTracingComputeRenderer, createWavefrontPathTracingComputeShaderSource,
   createWavefrontReferenceRay, featureFlagNames, intersectWavefrontReferenceTriangle, maxWavefrontDepth,
   packWavefrontSceneObjects, pathTracingIntegrators, rendererWavefrontComputeMode, renderWavefrontPathTracingComputeFrame,
-  traceWavefrontReferenceTriangles, transportExperimentNames, type AccelerationBuildMode, type BvhUpdateMode,
+  traceWavefrontReferenceTriangles, transportExperimentNames, instancingModes, type InstancingMode, type WavefrontInstancingStats, type AccelerationBuildMode, type BvhUpdateMode,
   type CanvasTarget, type PathTracingIntegrator, type TransportExperimentName, type WavefrontAdaptiveFrameStats,
   type WavefrontAdaptiveSettings, type WavefrontDenoiseOptions, type WavefrontDenoiseSettings,
   type WavefrontFeatureFlagResolution, type WavefrontFeatureFlagState, type WavefrontFrameStats,

@@ -106,6 +106,12 @@ export const INDEX_NONE = 0xffffffff;
 export const PRIMITIVE_SHAPE_TRIANGLE = 0;
 export const PRIMITIVE_SHAPE_SPHERE = 1;
 export const PRIMITIVE_SHAPE_BOX = 2;
+/**
+ * A placement of a shared mesh in the top level (two-level acceleration, pathtracer/scene/instancing.ts):
+ * v0 and e1 are its world-space box, `instance` the placement, whose bottom-level tree the ray enters
+ * in object space.
+ */
+export const PRIMITIVE_SHAPE_INSTANCE = 3;
 export const PRIMITIVE_SHAPE_MASK = 3;
 export const PRIMITIVE_FLAG_ALPHA = 4;
 /** A triangle of a single-sided material (glTF `doubleSided: false`): camera rays cull its back face. */
@@ -329,6 +335,7 @@ export const gpuConstants: Readonly<Record<string, number>> = Object.freeze({
   PRIMITIVE_SHAPE_TRIANGLE,
   PRIMITIVE_SHAPE_SPHERE,
   PRIMITIVE_SHAPE_BOX,
+  PRIMITIVE_SHAPE_INSTANCE,
   PRIMITIVE_SHAPE_MASK,
   PRIMITIVE_FLAG_ALPHA,
   PRIMITIVE_FLAG_SINGLE_SIDED,

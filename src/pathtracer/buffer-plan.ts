@@ -53,8 +53,12 @@ export interface BufferPlanInput {
   /** Bytes of the vertex streams and of the index buffer (pack-vertices.ts vertexStreamBytes). */
   vertexStreams: number;
   indices: number;
-  /** Triangles over all instances plus analytic shapes. */
+  /** Primitive records: the top level's (flattened triangles, placements, analytic shapes) and the bottom levels' triangles. */
   primitiveCount: number;
+  /** Upper bound of BVH nodes over every level (default 2 primitiveCount - 1). */
+  bvhNodeCount?: number;
+  /** What the primitive records hold, named when they do not fit. */
+  geometry?: string;
   alphaPrimitiveCount: number;
   instanceCount: number;
   lightCount: number;
@@ -74,16 +78,17 @@ export function planBuffers(i: BufferPlanInput): Record<PlannedBufferName, Plann
   const capacity = i.wavePaths;
   const pixels = i.width * i.height;
   const n = Math.max(1, i.primitiveCount);
+  const nodes = Math.max(1, i.bvhNodeCount ?? 2 * n - 1);
   const scene = (bytes: number, what: string, field = 'meshes'): PlannedBuffer => ({ bytes, category: 'scene', field, what });
   const queue = (bytes: number, what: string): PlannedBuffer => ({ bytes, category: 'queue', field: 'tileSize', what });
   const frame = (bytes: number, what: string): PlannedBuffer => ({ bytes, category: 'frame', field: 'width', what });
   const out = i.output ?? { moments: false, adaptive: false, denoise: false };
   const perPixel = (on: boolean, count = 1): number => (on ? pixels * count : 1);
   return {
-    primitives: scene(n * primitiveLayout.size, 'the primitive buffer'),
-    // A binary BVH over n primitives has at most 2n - 1 nodes.
-    bvhNodes: scene((2 * n - 1) * bvhNodeLayout.size, 'the BVH node buffer'),
-    bvhParents: scene((2 * n - 1) * 4, 'the BVH parent links'),
+    primitives: scene(n * primitiveLayout.size, `the primitive buffer (${n} records${i.geometry ? `: ${i.geometry}` : ''})`),
+    // A binary BVH over n primitives has at most 2n - 1 nodes (per level, with two levels).
+    bvhNodes: scene(nodes * bvhNodeLayout.size, `the BVH node buffer (${nodes} nodes)`),
+    bvhParents: scene(nodes * 4, 'the BVH parent links'),
     alphaPrimitives: scene(Math.max(1, i.alphaPrimitiveCount) * alphaPrimitiveLayout.size, 'the alpha-test records'),
     instances: scene(Math.max(1, i.instanceCount) * instanceLayout.size, 'the instance buffer', 'instances'),
     indices: scene(i.indices, 'the index buffer'),
@@ -126,7 +131,7 @@ export function checkBufferLimits(limits: GPUSupportedLimits, plan: Record<strin
   const max = Math.min(limits.maxStorageBufferBindingSize, limits.maxBufferSize);
   for (const b of Object.values(plan)) {
     if (b.bytes > max) {
-      throw new GpuRendererError('SCENE_TOO_LARGE', `${b.what} needs ${b.bytes} bytes but this device binds at most ${max} bytes per storage buffer`, { field: b.field });
+      throw new GpuRendererError('SCENE_TOO_LARGE', `${b.what} needs ${b.bytes} bytes but this device binds at most ${max} bytes per storage buffer (${b.bytes - max} bytes, ${(b.bytes / max).toFixed(2)}x, too many)`, { field: b.field });
     }
   }
 }

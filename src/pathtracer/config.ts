@@ -6,6 +6,7 @@ import { normalizeWavefrontCamera, type WavefrontCamera } from './camera.ts';
 import { outputOptionNames, parseOutputOptions, type WavefrontOutputConfig } from './output-options.ts';
 import type { PathTracingIntegrator, WavefrontPathTracingOptions } from './types.ts';
 import type { AccelerationBuildMode } from './scene/prepare-scene.ts';
+import { instancingModes, type InstancingMode } from './scene/instancing.ts';
 
 export const maxWavefrontDepth = 32;
 export const maxWavefrontImageSize = 16384;
@@ -41,6 +42,8 @@ export interface WavefrontPathTracingComputeConfig {
   energyCompensation: boolean;
   /** Where the BVH is built: 'cpu-upload' (binned SAH on the CPU, uploaded) or 'gpu' (LBVH in WGSL). */
   accelerationBuildMode: AccelerationBuildMode;
+  /** Which mesh placements are traced through shared bottom-level trees (scene/instancing.ts). */
+  instancing: InstancingMode;
 }
 
 const toneMappings: readonly WavefrontToneMapping[] = ['neutral', 'aces', 'linear', 'agx'];
@@ -56,6 +59,7 @@ export const wavefrontOptionNames: ReadonlySet<string> = new Set<keyof Wavefront
   'environmentMap', 'environmentLighting', 'environmentPortals', 'environmentPortalMode', 'lightSampler', 'environmentSampling',
   'energyCompensation',
   'accelerationBuildMode',
+  'instancing',
 ]);
 
 /** Validates the non-geometry options; every error names its field. */
@@ -90,10 +94,13 @@ export function createWavefrontPathTracingComputeConfig(options: Partial<Wavefro
   if (options.energyCompensation !== undefined && typeof options.energyCompensation !== 'boolean') fail('INVALID_OPTION', 'energyCompensation', 'expected a boolean');
   const accelerationBuildMode = options.accelerationBuildMode ?? 'cpu-upload';
   if (accelerationBuildMode !== 'cpu-upload' && accelerationBuildMode !== 'gpu') fail('INVALID_OPTION', 'accelerationBuildMode', `expected "cpu-upload" or "gpu", got ${JSON.stringify(accelerationBuildMode)}`);
+  const instancing = options.instancing ?? 'auto';
+  if (!instancingModes.includes(instancing)) fail('INVALID_OPTION', 'instancing', `expected one of ${instancingModes.map((m) => JSON.stringify(m)).join(', ')}, got ${JSON.stringify(instancing)}`);
   const output = parseOutputOptions(options);
   return {
     width, height, maxDepth, samplesPerPixel, tileSize, integrator, framesInFlight, seed, camera, environment, toneMapping, exposure, aovs: options.aovs ?? false, output, lighting,
     energyCompensation: options.energyCompensation ?? true,
     accelerationBuildMode,
+    instancing,
   };
 }

@@ -16,6 +16,7 @@ export { integratorKernels, wavefrontKernels } from './pipelines.ts';
 export { defaultDenoiseSettings, outputOptionNames, type WavefrontOutputConfig } from './output-options.ts';
 export { featureFlagNames, resolveFeatureFlags, transportExperimentBehaviour, transportExperimentNames } from './feature-flags.ts';
 export type * from './types.ts';
+export { instancingModes, type InstancingMode } from './scene/instancing.ts';
 
 /** The execution model of the path tracer. */
 export const rendererWavefrontComputeMode = 'wavefront-compute' as const;

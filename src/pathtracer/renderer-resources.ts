@@ -31,7 +31,7 @@ export function uploadRendererResources(
   const b = buffers;
   const S = BufferUsage.STORAGE;
   // The BVH buffers hold any tree of the scene (2n - 1 nodes), so a rebuild fits; in 'gpu' mode the
-  // GPU build fills them (scene-acceleration.ts).
+  // GPU build fills the top level (scene-acceleration.ts).
   const gpuBuild = prepared.acceleration.mode === 'gpu';
   const uploads: Partial<Record<PlannedBufferName, ArrayBuffer>> = {
     ...(gpuBuild ? {} : { primitives: prepared.primitives, bvhNodes: prepared.bvhNodes, bvhParents: prepared.bvhParents.buffer as ArrayBuffer }),
@@ -65,7 +65,9 @@ export function uploadRendererResources(
   const resources = {} as Record<PlannedBufferName, GPUBuffer>;
   for (const [name, p] of Object.entries(plan) as [PlannedBufferName, PlannedBuffer][]) {
     const data = uploads[name];
-    if (name === 'bvhNodes' || name === 'bvhParents') {
+    // The acceleration buffers hold more than the upload: room for any top-level tree, then the
+    // bottom levels (written by SceneAcceleration).
+    if (name === 'primitives' || name === 'bvhNodes' || name === 'bvhParents') {
       resources[name] = b.create(name, Math.max(p.bytes, data?.byteLength ?? 0), S | BufferUsage.COPY_DST, p.category);
       if (data) device.queue.writeBuffer(resources[name], 0, data);
     } else {

@@ -53,7 +53,8 @@ export async function updateGeometry(s: RendererState, update: WavefrontGeometry
   p.sceneCenter = extent.sceneCenter;
   p.sceneRadius = extent.sceneRadius;
   writeFrameUniforms(s);
-  const accelerationMs = await s.acceleration!.update(packed.flat, packed.bvh);
+  if (packed.bottomLevels) p.bottomLevels = packed.bottomLevels;
+  const accelerationMs = await s.acceleration!.update(packed.flat, packed.bvh, packed.bottomLevels !== null);
   resetAccumulation(s);
   return { bvh: packed.bvh, accelerationMs, totalMs: performance.now() - started };
 }

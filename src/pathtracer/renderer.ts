@@ -30,6 +30,7 @@ import type { WavefrontGeometryUpdate, WavefrontGeometryUpdateStats } from './sc
 import { lightingOptionsOf, type SceneSources } from './scene-update.ts';
 import { SubmissionQueue } from './submission-queue.ts';
 import { planInput, sceneFeatures } from './scene-plan.ts';
+import { instancingStats } from './scene/instancing.ts';
 import { deviceWavePaths, gridWorkgroupLimit, waveBound } from './wave-capacity.ts';
 import type {
   PathTracingIntegrator,
@@ -78,12 +79,12 @@ export async function createWavefrontPathTracingComputeRenderer(options: Wavefro
     const estimate = planInput(config, scene, maxWavePaths);
     checkBufferLimits(limits, planBuffers(estimate));
     const materials = prepareMaterials(scene, { maxTextureDimension2D: limits.maxTextureDimension2D, maxTextureArrayLayers: limits.maxTextureArrayLayers }, { energyCompensation: config.energyCompensation });
-    const prepared = await prepareGeometry(scene, materials, { accelerationBuildMode: config.accelerationBuildMode });
+    const prepared = await prepareGeometry(scene, materials, { accelerationBuildMode: config.accelerationBuildMode, instancing: config.instancing });
     const lighting = buildGpuLighting({ config: config.lighting, triangles: { records: prepared.lights, count: prepared.lightCount }, sceneCenter: prepared.sceneCenter, sceneRadius: prepared.sceneRadius });
-    const plan = planBuffers({ ...estimate, materialCells: prepared.materials.byteLength / 16, lightCount: prepared.lightCount, lightHeapCells: lighting.heap.byteLength / 16, primitiveCount: prepared.primitiveCount });
+    const plan = planBuffers({ ...estimate, materialCells: prepared.materials.byteLength / 16, lightCount: prepared.lightCount, lightHeapCells: lighting.heap.byteLength / 16 });
     checkBufferLimits(limits, plan);
     const wavePaths = Math.min(maxWavePaths, config.width * config.height * config.samplesPerPixel);
-    const initialPlan = planBuffers({ ...estimate, materialCells: prepared.materials.byteLength / 16, lightCount: prepared.lightCount, lightHeapCells: lighting.heap.byteLength / 16, primitiveCount: prepared.primitiveCount, wavePaths });
+    const initialPlan = planBuffers({ ...estimate, materialCells: prepared.materials.byteLength / 16, lightCount: prepared.lightCount, lightHeapCells: lighting.heap.byteLength / 16, wavePaths });
     const features = specialization === 'off' ? allShaderFeatures : sceneFeatures(prepared, lighting, config, acquired);
     const [pipelines, adaptivePipelines, denoisePipelines] = await Promise.all([
       pathTracerPipelines(acquired.device, features, config.integrator),
@@ -266,8 +267,9 @@ class WavefrontRenderer extends EventTarget implements WavefrontPathTracingRende
       maxWavePaths: s.maxWavePaths,
       framesInFlight: s.config.framesInFlight,
       triangleCount: p.triangleCount,
-      bvhNodeCount: p.bvh.nodeCount,
-      bvhDepth: p.bvh.depth,
+      bvhNodeCount: p.bvh.nodeCount + (p.bottomLevels?.levels.reduce((sum, l) => sum + l.nodeCount, 0) ?? 0),
+      bvhDepth: p.bvh.depth + (p.bottomLevels ? 1 + Math.max(...p.bottomLevels.levels.map((l) => l.depth)) : 0),
+      instancing: instancingStats(s.scene.normalized, p.instancing),
       lightCount: s.lighting.boundedCount + s.lighting.directionalCount,
       sceneObjectCount: s.scene.sceneObjectCount,
       instanceCount: s.scene.instanceCount,

@@ -12,6 +12,7 @@ import { materialHeapCells } from './scene/pack-materials.ts';
 import { vertexStreamBytes } from './scene/pack-vertices.ts';
 import { denoiserFilmReads } from '../film/denoise/registry.ts';
 import type { PreparedScene } from './scene/prepare-scene.ts';
+import { bvhNodeCapacity, planInstancing, type InstancingPlan } from './scene/instancing.ts';
 
 /**
  * Sizes known from the validated scene, before the BVH is built: what the first limit check uses.
@@ -19,14 +20,12 @@ import type { PreparedScene } from './scene/prepare-scene.ts';
  * which leaves them alone, checks the scene's buffers with the default).
  */
 export function planInput(config: WavefrontPathTracingComputeConfig, scene: NormalizedScene, wavePaths = 1): BufferPlanInput {
-  let alpha = 0;
   let lights = 0;
   for (const inst of scene.instances) {
     const material = scene.materials[inst.material ?? scene.meshMaterials[inst.mesh]!]!;
-    const triangles = scene.meshes[inst.mesh]!.triangleCount;
-    if (material.alphaMode !== 'OPAQUE') alpha += triangles;
-    if (material.emission.some((c) => c > 0)) lights += triangles;
+    if (material.emission.some((c) => c > 0)) lights += scene.meshes[inst.mesh]!.triangleCount;
   }
+  const instancing = planInstancing(scene, config.instancing);
   return {
     width: config.width,
     height: config.height,
@@ -37,13 +36,21 @@ export function planInput(config: WavefrontPathTracingComputeConfig, scene: Norm
     wavesPerSubmission: config.output.maxFramePassesPerSubmission,
     framesInFlight: config.framesInFlight,
     ...vertexStreamBytes(scene.meshes),
-    primitiveCount: scene.triangleCount + scene.sceneObjects.length,
-    alphaPrimitiveCount: alpha,
+    primitiveCount: instancing.topPrimitiveCount + instancing.bottomLevelTriangles,
+    bvhNodeCount: bvhNodeCapacity(instancing),
+    geometry: geometryDescription(instancing, scene),
+    alphaPrimitiveCount: instancing.alphaTriangles,
     instanceCount: scene.instances.length + scene.sceneObjects.length,
     lightCount: lights,
     // Cores, extension blocks and texture bindings (the exact heap, tables included, is checked after packing).
     materialCells: materialHeapCells([...scene.materials, ...scene.sceneObjects.map((o) => o.material)]),
   };
+}
+
+/** What the primitive records hold, for SCENE_TOO_LARGE errors. */
+function geometryDescription(plan: InstancingPlan, scene: NormalizedScene): string {
+  const shared = plan.bottomLevels.length > 0 ? `, ${plan.placements} placements of ${plan.bottomLevels.length} shared meshes (${plan.bottomLevelTriangles} triangles stored once)` : '';
+  return `${plan.flattenedTriangles} flattened triangles${shared}, ${scene.sceneObjects.length} analytic shapes`;
 }
 
 /**
@@ -62,6 +69,7 @@ export function outputFeatures(config: WavefrontPathTracingComputeConfig): { aov
 export function sceneFeatures(prepared: PreparedScene, lighting: GpuLighting, config: WavefrontPathTracingComputeConfig, device: { softwareAdapter: boolean }): ShaderFeatures {
   return {
     FEATURE_ANALYTIC_SHAPES: prepared.uses.analyticShapes,
+    FEATURE_INSTANCING: prepared.uses.instancing,
     FEATURE_ALPHA_TEST: prepared.uses.alphaTest,
     FEATURE_TEXTURES: prepared.uses.textures,
     FEATURE_EMISSIVE_LIGHTS: prepared.uses.emissiveLights,

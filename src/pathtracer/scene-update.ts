@@ -74,9 +74,9 @@ export async function prepareSceneUpdate(
   const next = { ...config, lighting: lightingConfig };
   const estimate = planInput(next, scene);
   checkBufferLimits(limits, planBuffers(estimate));
-  const prepared = await prepareGeometry(scene, sources.materials, { accelerationBuildMode: config.accelerationBuildMode });
+  const prepared = await prepareGeometry(scene, sources.materials, { accelerationBuildMode: config.accelerationBuildMode, instancing: config.instancing });
   const lighting = buildGpuLighting({ config: lightingConfig, triangles: { records: prepared.lights, count: prepared.lightCount }, sceneCenter: prepared.sceneCenter, sceneRadius: prepared.sceneRadius });
-  const plan = planBuffers({ ...estimate, lightCount: prepared.lightCount, lightHeapCells: lighting.heap.byteLength / 16, primitiveCount: prepared.primitiveCount });
+  const plan = planBuffers({ ...estimate, lightCount: prepared.lightCount, lightHeapCells: lighting.heap.byteLength / 16 });
   checkBufferLimits(limits, plan);
   // The device's choice stays what the kernels were built with.
   const features = sceneFeatures(prepared, lighting, next, { softwareAdapter: !sources.features.FEATURE_WORKGROUP_TALLIES });

@@ -5,6 +5,7 @@ import type { WavefrontAovName } from '../film/aovs.ts';
 import type { WavefrontCameraInput, WavefrontSceneDescription, WavefrontToneMapping } from '../scene/types.ts';
 import type { WavefrontOutputOptions, WavefrontRenderFrameOptions } from './output-options.ts';
 import type { AccelerationBuildMode } from './scene/prepare-scene.ts';
+import type { InstancingMode } from './scene/instancing.ts';
 import type { WavefrontGeometryUpdate, WavefrontGeometryUpdateStats } from './scene/geometry-update.ts';
 import type {
   WavefrontAdaptiveFrameStats,
@@ -106,6 +107,15 @@ export interface WavefrontPathTracingOptions extends Omit<WavefrontSceneDescript
    * Performance). Both are traced by the same kernels and render the same image.
    */
   accelerationBuildMode?: AccelerationBuildMode;
+  /**
+   * Two-level acceleration for meshes placed many times (reused glTF nodes, EXT_mesh_gpu_instancing,
+   * `instances`): each such mesh is stored and built once, in object space, and each placement is
+   * one record of the top-level tree, so memory and build time follow unique geometry. 'auto'
+   * (default): meshes placed more than once whose copies would add at least 1,024 triangles;
+   * 'always': every placement; 'off': every placement flattened into world-space triangles.
+   * All three render the same image.
+   */
+  instancing?: InstancingMode;
   canvas?: CanvasTarget;
   /** Share a device; otherwise one is acquired (Dawn in Node.js). */
   device?: GPUDevice;
@@ -117,6 +127,23 @@ export interface WavefrontRayCounts {
   extension: number;
   shadow: number;
   total: number;
+}
+
+export interface WavefrontInstancingStats {
+  mode: InstancingMode;
+  /** Meshes stored once with a bottom-level tree (per alpha/sidedness key). */
+  sharedMeshes: number;
+  /** Placements traced through a bottom level. */
+  placements: number;
+  /** Triangles stored once in bottom levels (they stand for `placedTriangles`). */
+  bottomLevelTriangles: number;
+  placedTriangles: number;
+  /** Triangles flattened into the top level in world space. */
+  flattenedTriangles: number;
+  /** Records of the top-level tree: flattened triangles, placements and analytic shapes. */
+  topLevelRecords: number;
+  /** GPU bytes each placement adds: its instance record, its top-level record and about two tree nodes. */
+  bytesPerPlacement: number;
 }
 
 export interface WavefrontMemoryStats {
@@ -212,12 +239,17 @@ export interface WavefrontRendererSnapshot extends WavefrontOutputState {
   /** Most paths a wave may hold on this device (or tileSize^2). */
   maxWavePaths: number;
   framesInFlight: number;
+  /** Triangles over all placements (as if every placement were flattened). */
   triangleCount: number;
+  /** Nodes of the top-level tree and every bottom level. */
   bvhNodeCount: number;
+  /** How placements are traced: shared meshes with bottom-level trees, and what they store. */
+  instancing: WavefrontInstancingStats;
   lightCount: number;
   sceneObjectCount: number;
   instanceCount: number;
   textureCount: number;
+  /** Edges from the top-level root to the deepest leaf, through a bottom level where placements lead. */
   bvhDepth: number;
   /** Loader, preparation and device warnings (downscaled textures, an integrator the device cannot run, ...). */
   warnings: readonly string[];

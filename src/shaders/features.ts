@@ -8,6 +8,7 @@ import { materialExtensions, type MaterialExtension } from '../materials/extensi
 
 export const shaderFeatures = {
   FEATURE_ANALYTIC_SHAPES: { default: true, doc: 'spheres and boxes among the primitives' },
+  FEATURE_INSTANCING: { default: true, doc: 'placements of shared meshes in the top level: traversal enters their bottom-level trees in object space' },
   FEATURE_ALPHA_TEST: { default: true, doc: 'MASK or BLEND primitives: traversal alpha-tests candidate hits' },
   FEATURE_TEXTURES: { default: true, doc: 'materials sample the texture atlas' },
   FEATURE_EMISSIVE_LIGHTS: { default: true, doc: 'emissive triangles are sampled by next-event estimation' },

@@ -1,26 +1,30 @@
 import {
-  ALPHA_MODE_BLEND,
-  ALPHA_MODE_MASK,
   INDEX_NONE,
   PRIMITIVE_ALPHA_SHIFT,
   PRIMITIVE_FLAG_ALPHA,
   PRIMITIVE_FLAG_MIRRORED,
   PRIMITIVE_FLAG_SINGLE_SIDED,
   PRIMITIVE_SHAPE_BOX,
+  PRIMITIVE_SHAPE_INSTANCE,
   PRIMITIVE_SHAPE_SPHERE,
   PRIMITIVE_SHAPE_TRIANGLE,
 } from '../../gpu-layout/constants.ts';
 import { alphaPrimitiveLayout } from '../../gpu-layout/records.ts';
-import { allocateStructArray, writeStruct } from '../../gpu-layout/struct-layout.ts';
+import { allocateStructArray } from '../../gpu-layout/struct-layout.ts';
 import type { NormalizedInstance } from '../../scene/instance.ts';
 import type { NormalizedScene } from '../../scene/normalize-scene.ts';
-import { applyTextureTransform } from '../../scene/texture-transform.ts';
+import { writeAlphaRecord } from './alpha-records.ts';
+import { instanceMaterial, meshBounds, placementBounds, type InstancingPlan } from './instancing.ts';
 import type { TextureInfoOffsets } from './pack-materials.ts';
 
+export { instanceMaterial } from './instancing.ts';
+
 /**
- * Every traceable primitive in world space, before BVH ordering: the triangles of every instance
- * (transforms applied) followed by the analytic scene objects. `boundsTriangles` feeds the BVH
- * builder (a shape is given as the triangle (min, max, max), whose bounding box is the shape's).
+ * The top level's primitives in world space, before BVH ordering: the triangles of every flattened
+ * instance (transforms applied), one record per placement of a shared mesh (its world box; the
+ * mesh's triangles are in its bottom level, instancing.ts), then the analytic scene objects.
+ * `boundsTriangles` feeds the BVH builder (a box is given as the triangle (min, max, max), whose
+ * bounding box it is).
  */
 export interface FlatPrimitives {
   count: number;
@@ -42,15 +46,9 @@ export function transformPoint(inst: NormalizedInstance, x: number, y: number, z
   out[at + 2] = m[8]! * x + m[9]! * y + m[10]! * z + m[11]!;
 }
 
-/** Instance material: its override or its mesh's. */
-export function instanceMaterial(scene: NormalizedScene, inst: NormalizedInstance): number {
-  return inst.material ?? scene.meshMaterials[inst.mesh]!;
-}
-
-export function flattenPrimitives(scene: NormalizedScene, infoOffset: TextureInfoOffsets): FlatPrimitives {
-  const objectCount = scene.sceneObjects.length;
+export function flattenPrimitives(scene: NormalizedScene, infoOffset: TextureInfoOffsets, plan: InstancingPlan): FlatPrimitives {
   // An empty scene still needs one record: a zero triangle every traversal rejects.
-  const count = Math.max(1, scene.triangleCount + objectCount);
+  const count = plan.topPrimitiveCount;
   const boundsTriangles = new Float32Array(count * 9);
   const geometry = new Float32Array(count * 9);
   const instance = new Uint32Array(count).fill(INDEX_NONE);
@@ -67,25 +65,30 @@ export function flattenPrimitives(scene: NormalizedScene, infoOffset: TextureInf
     if (z > max[2]) max[2] = z;
   };
   let alphaCount = 0;
-  scene.instances.forEach((inst) => {
+  scene.instances.forEach((inst, i) => {
     const mesh = scene.meshes[inst.mesh]!;
     const material = scene.materials[instanceMaterial(scene, inst)]!;
-    if (material.alphaMode !== 'OPAQUE') alphaCount += mesh.triangleCount;
+    if (material.alphaMode !== 'OPAQUE' && plan.bottomLevelOf[i]! < 0) alphaCount += mesh.triangleCount;
   });
   const alphaPrimitives = allocateStructArray(alphaPrimitiveLayout, alphaCount);
   const alphaView = new DataView(alphaPrimitives);
   let alphaIndex = 0;
   const w = new Float64Array(9);
   let k = 0;
+  const boxes = new Map<number, Float64Array>();
+  const box = new Float64Array(6);
+  const placements: number[] = [];
   scene.instances.forEach((inst, instanceIndex) => {
+    if (plan.bottomLevelOf[instanceIndex]! >= 0) {
+      placements.push(instanceIndex);
+      return;
+    }
     const mesh = scene.meshes[inst.mesh]!;
     const material = scene.materials[instanceMaterial(scene, inst)]!;
     const alpha = material.alphaMode !== 'OPAQUE';
     // Back-face culling of camera rays (bvh-traversal.wesl) needs the material's sidedness and the
     // instance's handedness.
     const sides = (material.doubleSided ? 0 : PRIMITIVE_FLAG_SINGLE_SIDED) | (inst.determinant < 0 ? PRIMITIVE_FLAG_MIRRORED : 0);
-    const texture = material.baseColorTexture;
-    const uvs = texture ? (texture.texCoord === 1 ? mesh.uvs1 : mesh.uvs) : null;
     for (let t = 0; t < mesh.triangleCount; t++, k++) {
       for (let c = 0; c < 3; c++) {
         const v = mesh.indices[3 * t + c]!;
@@ -105,24 +108,32 @@ export function flattenPrimitives(scene: NormalizedScene, infoOffset: TextureInf
       primitive[k] = t;
       shape[k] = PRIMITIVE_SHAPE_TRIANGLE | sides;
       if (alpha) {
-        const vertex = (c: number): number => mesh.indices[3 * t + c]!;
-        const uv = (c: number): [number, number] => (uvs && texture ? applyTextureTransform(texture.transform, uvs[2 * vertex(c)]!, uvs[2 * vertex(c) + 1]!) : [0, 0]);
-        const vertexAlpha = (c: number): number => (mesh.colors ? mesh.colors[4 * vertex(c) + 3]! : 1);
-        writeStruct(alphaPrimitiveLayout, alphaView, alphaIndex, {
-          uv0: uv(0),
-          uv1: uv(1),
-          uv2: uv(2),
-          alphaCutoff: material.alphaCutoff,
-          alphaMode: material.alphaMode === 'MASK' ? ALPHA_MODE_MASK : ALPHA_MODE_BLEND,
-          vertexAlpha: [vertexAlpha(0), vertexAlpha(1), vertexAlpha(2)],
-          alphaFactor: material.baseColor[3],
-          texture: texture && uvs ? infoOffset(texture.texture, true) : INDEX_NONE,
-        });
+        writeAlphaRecord(alphaView, alphaIndex, mesh, material, t, infoOffset);
         shape[k] = PRIMITIVE_SHAPE_TRIANGLE | sides | PRIMITIVE_FLAG_ALPHA | (alphaIndex << PRIMITIVE_ALPHA_SHIFT);
         alphaIndex++;
       }
     }
   });
+  for (const instanceIndex of placements) {
+    const inst = scene.instances[instanceIndex]!;
+    let objectBox = boxes.get(inst.mesh);
+    if (!objectBox) boxes.set(inst.mesh, (objectBox = meshBounds(scene.meshes[inst.mesh]!)));
+    placementBounds(inst, objectBox, box);
+    const o = 9 * k;
+    for (let c = 0; c < 3; c++) {
+      boundsTriangles[o + c] = box[c]!;
+      boundsTriangles[o + 3 + c] = box[3 + c]!;
+      boundsTriangles[o + 6 + c] = box[3 + c]!;
+      geometry[o + c] = box[c]!;
+      geometry[o + 3 + c] = box[3 + c]!;
+    }
+    grow(box[0]!, box[1]!, box[2]!);
+    grow(box[3]!, box[4]!, box[5]!);
+    instance[k] = instanceIndex;
+    primitive[k] = 0;
+    shape[k] = PRIMITIVE_SHAPE_INSTANCE;
+    k++;
+  }
   scene.sceneObjects.forEach((object, i) => {
     const o = 9 * k;
     const lo = object.type === 'sphere' ? object.a.map((c) => c - object.b[0]) : object.a;

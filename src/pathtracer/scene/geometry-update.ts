@@ -13,6 +13,7 @@ import { affineFromColumnMajor, type NormalizedInstance } from '../../scene/inst
 import { normalizeWavefrontMesh, type NormalizedMesh } from '../../scene/mesh.ts';
 import type { NormalizedScene } from '../../scene/normalize-scene.ts';
 import { flattenPrimitives, type FlatPrimitives } from './flatten-primitives.ts';
+import { refitBottomLevels, worldToObjectRows, type BottomLevels } from './instancing.ts';
 import { buildLightTable, type LightTable } from './light-table.ts';
 import { packVertexStreams } from './pack-vertices.ts';
 import type { PreparedScene } from './prepare-scene.ts';
@@ -59,6 +60,8 @@ export interface PackedGeometryUpdate {
   vertexStreams: Uint32Array | null;
   instances: ArrayBuffer | null;
   lights: LightTable | null;
+  /** Bottom levels refitted to moved shared meshes (null when none moved). */
+  bottomLevels: BottomLevels | null;
 }
 
 function meshUpdate(mesh: NormalizedMesh, input: unknown, index: number): NormalizedMesh {
@@ -108,7 +111,11 @@ function patchInstances(records: ArrayBuffer, scene: NormalizedScene): ArrayBuff
     const m = inst.objectToWorld;
     const n = inst.normalToWorld;
     const flags = readStruct(instanceLayout, view, i).flags as number;
+    const [w0, w1, w2] = worldToObjectRows(inst);
     writeStruct(instanceLayout, view, i, {
+      worldToObject0: w0,
+      worldToObject1: w1,
+      worldToObject2: w2,
       objectToWorld0: [m[0]!, m[1]!, m[2]!, m[3]!],
       objectToWorld1: [m[4]!, m[5]!, m[6]!, m[7]!],
       objectToWorld2: [m[8]!, m[9]!, m[10]!, m[11]!],
@@ -138,7 +145,7 @@ export function packGeometryUpdate(scene: NormalizedScene, prepared: PreparedSce
   const instances = instanceInputs ? scene.instances.map((inst, i) => (instanceInputs[i] == null ? inst : instanceUpdate(inst, instanceInputs[i], i))) : scene.instances;
   const next: NormalizedScene = { ...scene, meshes, instances };
   const infoOffset = (texture: number, srgb: boolean): number => prepared.atlas.infoOffset(texture, srgb);
-  const flat = flattenPrimitives(next, infoOffset);
+  const flat = flattenPrimitives(next, infoOffset, prepared.instancing);
   let lights: LightTable | null = null;
   if (prepared.lightCount > 0) {
     lights = buildLightTable(next, infoOffset);
@@ -146,9 +153,21 @@ export function packGeometryUpdate(scene: NormalizedScene, prepared: PreparedSce
       throw new GpuRendererError('INVALID_STATE', `the update changes the emitting triangles (${prepared.lightCount} -> ${lights.count} with positive power); create a new renderer for it`, { field: 'meshes' });
     }
   }
+  // Shared meshes that moved: their bottom levels are refitted on a copy (applied with the rest).
+  const moved = new Set<number>();
+  meshInputs?.forEach((u, i) => {
+    if (u != null) moved.add(i);
+  });
+  let bottomLevels: BottomLevels | null = null;
+  const bottom = prepared.bottomLevels;
+  if (bottom && prepared.instancing.bottomLevels.some((b) => moved.has(b.mesh))) {
+    bottomLevels = { ...bottom, primitives: bottom.primitives.slice(0), nodes: bottom.nodes.slice(0) };
+    refitBottomLevels(next, prepared.instancing, bottomLevels, moved);
+  }
   return {
     scene: next,
     flat,
+    bottomLevels,
     bvh,
     vertexStreams: meshInputs ? packVertexStreams(meshes).vertexStreams : null,
     instances: instanceInputs ? patchInstances(prepared.instances, next) : null,

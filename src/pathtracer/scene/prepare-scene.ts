@@ -1,10 +1,13 @@
 import { buildBvhAsync, type BvhBuildResult } from '../../accel/bvh-builder.ts';
 import { bvhParentLinks, packPrimitives, packWavefrontBvhNodes } from '../../accel/triangle-packing.ts';
+import { INDEX_NONE } from '../../gpu-layout/constants.ts';
+import { alphaPrimitiveLayout } from '../../gpu-layout/records.ts';
 import { Vec4Heap } from '../../gpu-layout/vec4-heap.ts';
 import { buildTextureAtlas, type TextureAtlas } from '../../materials/textures/texture-atlas.ts';
 import type { AtlasLimits } from '../../materials/textures/atlas-packer.ts';
 import type { NormalizedScene } from '../../scene/normalize-scene.ts';
 import { flattenPrimitives, type FlatPrimitives } from './flatten-primitives.ts';
+import { buildBottomLevels, planInstancing, type BottomLevels, type InstancingMode, type InstancingPlan } from './instancing.ts';
 import { buildLightTable } from './light-table.ts';
 import { packInstances } from './pack-instances.ts';
 import { packMaterialTables, packMaterials, planMaterials, textureUsages, type MaterialFeatureUses, type TextureInfoOffsets } from './pack-materials.ts';
@@ -24,8 +27,12 @@ export interface PreparedScene {
   lights: ArrayBuffer;
   lightCount: number;
   lightPower: number;
+  /** Records of the top level (flattened triangles, placements of shared meshes, analytic shapes). */
   primitiveCount: number;
   triangleCount: number;
+  /** Which placements go through bottom-level trees, and the trees (null when none do). */
+  instancing: InstancingPlan;
+  bottomLevels: BottomLevels | null;
   bvh: { nodeCount: number; depth: number; sahCost: number; buildTimeMs: number };
   /**
    * How the BVH is built. 'cpu-upload': `bvhNodes`, `bvhParents` and `primitives` (in BVH order,
@@ -37,7 +44,7 @@ export interface PreparedScene {
   sceneCenter: [number, number, number];
   sceneRadius: number;
   /** Which optional shader features the scene needs (the rest are compiled out). */
-  uses: { analyticShapes: boolean; alphaTest: boolean; textures: boolean; emissiveLights: boolean; materials: MaterialFeatureUses };
+  uses: { analyticShapes: boolean; instancing: boolean; alphaTest: boolean; textures: boolean; emissiveLights: boolean; materials: MaterialFeatureUses };
   warnings: string[];
 }
 
@@ -82,12 +89,14 @@ export function prepareMaterials(scene: NormalizedScene, limits: AtlasLimits, op
 export async function prepareGeometry(
   scene: NormalizedScene,
   materials: PreparedMaterials,
-  options: { signal?: AbortSignal; accelerationBuildMode?: AccelerationBuildMode } = {},
+  options: { signal?: AbortSignal; accelerationBuildMode?: AccelerationBuildMode; instancing?: InstancingMode } = {},
 ): Promise<PreparedScene> {
   const { infoOffset } = materials;
   const streams = packVertexStreams(scene.meshes);
   const lights = buildLightTable(scene, infoOffset);
-  const flat = flattenPrimitives(scene, infoOffset);
+  const plan = planInstancing(scene, options.instancing);
+  const flat = flattenPrimitives(scene, infoOffset, plan);
+  const bottomLevels = plan.bottomLevels.length > 0 ? await buildBottomLevels(scene, plan, infoOffset, flat.alphaPrimitives.byteLength / alphaPrimitiveLayout.size, options.signal ? { signal: options.signal } : {}) : null;
   const gpu = options.accelerationBuildMode === 'gpu';
   const cpuBvh = gpu ? null : await buildBvhAsync(flat.boundsTriangles, options.signal ? { signal: options.signal } : {});
   const bvh = cpuBvh ?? gpuBuildPending(flat.count);
@@ -97,8 +106,8 @@ export async function prepareGeometry(
     primitives: packPrimitives(flat, bvh.triangleOrder),
     bvhNodes: nodes,
     bvhParents: gpu ? new Uint32Array(0) : bvhParentLinks(nodes, bvh.nodeCount),
-    alphaPrimitives: flat.alphaPrimitives,
-    instances: packInstances(scene, streams, materials.materialOffsets, materials.objectMaterialOffsets, lights.lightBase),
+    alphaPrimitives: bottomLevels ? concatBuffers(flat.alphaPrimitives, bottomLevels.alphaPrimitives) : flat.alphaPrimitives,
+    instances: packInstances(scene, streams, materials.materialOffsets, materials.objectMaterialOffsets, lights.lightBase, bottomLevelRoots(plan, bottomLevels)),
     indices: streams.indices,
     vertexStreams: streams.vertexStreams,
     materials: materials.heap.finish(),
@@ -108,11 +117,13 @@ export async function prepareGeometry(
     lightPower: lights.totalPower,
     primitiveCount: flat.count,
     triangleCount: scene.triangleCount,
+    instancing: plan,
+    bottomLevels,
     bvh: { nodeCount: bvh.nodeCount, depth: bvh.depth, sahCost: bvh.sahCost, buildTimeMs: bvh.buildTimeMs },
     acceleration: { mode: gpu ? 'gpu' : 'cpu-upload', order: gpu ? null : bvh.triangleOrder },
     sceneCenter,
     sceneRadius,
-    uses: { analyticShapes: scene.sceneObjects.length > 0, alphaTest: flat.alphaCount > 0, textures: materials.uses.textures, emissiveLights: lights.count > 0, materials: materials.uses.materials },
+    uses: { analyticShapes: scene.sceneObjects.length > 0, instancing: bottomLevels !== null, alphaTest: plan.alphaTriangles > 0, textures: materials.uses.textures, emissiveLights: lights.count > 0, materials: materials.uses.materials },
     warnings: materials.warnings,
   };
 }
@@ -120,7 +131,7 @@ export async function prepareGeometry(
 export async function prepareScene(
   scene: NormalizedScene,
   limits: AtlasLimits,
-  options: { signal?: AbortSignal; energyCompensation?: boolean; accelerationBuildMode?: AccelerationBuildMode } = {},
+  options: { signal?: AbortSignal; energyCompensation?: boolean; accelerationBuildMode?: AccelerationBuildMode; instancing?: InstancingMode } = {},
 ): Promise<PreparedScene> {
   return prepareGeometry(scene, prepareMaterials(scene, limits, options), options);
 }
@@ -132,6 +143,18 @@ export function sceneExtent(scene: NormalizedScene, flat: FlatPrimitives): { sce
   const sceneCenter: [number, number, number] = [0.5 * (min[0] + max[0]), 0.5 * (min[1] + max[1]), 0.5 * (min[2] + max[2])];
   const sceneRadius = empty ? 1 : Math.max(1e-6, 0.5 * Math.hypot(max[0] - min[0], max[1] - min[1], max[2] - min[2]));
   return { sceneCenter, sceneRadius };
+}
+
+/** Per scene instance: the root node of its bottom level, INDEX_NONE when it is flattened. */
+export function bottomLevelRoots(plan: InstancingPlan, bottom: BottomLevels | null): Uint32Array {
+  return Uint32Array.from(plan.bottomLevelOf, (b) => (b >= 0 && bottom ? bottom.levels[b]!.root : INDEX_NONE));
+}
+
+function concatBuffers(a: ArrayBuffer, b: ArrayBuffer): ArrayBuffer {
+  const out = new Uint8Array(a.byteLength + b.byteLength);
+  out.set(new Uint8Array(a), 0);
+  out.set(new Uint8Array(b), a.byteLength);
+  return out.buffer;
 }
 
 /** Before a GPU build: scene order (the identity) and no nodes yet. */

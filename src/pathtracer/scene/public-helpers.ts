@@ -1,6 +1,7 @@
 import { normalizeWavefrontScene } from '../../scene/normalize-scene.ts';
 import type { WavefrontMeshInput, WavefrontSceneDescription, WavefrontSceneObjectInput } from '../../scene/types.ts';
 import { flattenPrimitives } from './flatten-primitives.ts';
+import { planInstancing } from './instancing.ts';
 import { packPrimitives } from '../../accel/triangle-packing.ts';
 import { packVertexStreams, type PackedVertexStreams } from './pack-vertices.ts';
 import { prepareScene, type PreparedScene } from './prepare-scene.ts';
@@ -33,6 +34,6 @@ export function createWavefrontGpuMeshSource(meshes: readonly WavefrontMeshInput
 /** Analytic scene objects as the Primitive records the traversal intersects (sphere or box shapes). */
 export function packWavefrontSceneObjects(sceneObjects: readonly WavefrontSceneObjectInput[]): ArrayBuffer {
   const scene = normalizeWavefrontScene({ sceneObjects: [...sceneObjects] });
-  const flat = flattenPrimitives(scene, noTextures);
+  const flat = flattenPrimitives(scene, noTextures, planInstancing(scene, 'off'));
   return packPrimitives(flat, Uint32Array.from({ length: flat.count }, (_, i) => i));
 }

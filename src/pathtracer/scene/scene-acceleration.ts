@@ -8,12 +8,15 @@
  *   LBVH builder writes primitives, nodes and parent links; a refit re-gathers and refits on the
  *   GPU, a rebuild runs the GPU build again.
  *
- * Either way the traversal reads the same three buffers in the same format.
+ * Either way the traversal reads the same three buffers in the same format. Bottom-level trees of
+ * shared meshes (instancing.ts) follow the top level in the same buffers; only the top level
+ * follows moved placements.
  */
 import { buildBvhAsync } from '../../accel/bvh-builder.ts';
 import { GpuBvhBuilder, GpuBvhRefitter } from '../../accel/gpu-build/gpu-bvh-builder.ts';
 import { bvhParentLinks, packPrimitives, packWavefrontBvhNodes } from '../../accel/triangle-packing.ts';
 import { BufferUsage } from '../../gpu/webgpu-constants.ts';
+import { bvhNodeLayout, primitiveLayout } from '../../gpu-layout/records.ts';
 import type { GpuBufferSet } from '../gpu-buffers.ts';
 import type { FlatPrimitives } from './flatten-primitives.ts';
 import type { AccelerationBuildMode, PreparedScene } from './prepare-scene.ts';
@@ -55,12 +58,30 @@ export class SceneAcceleration {
    * the tree on the GPU (filling in `prepared.bvh`). `owner` tracks the source buffer's memory.
    */
   static async create(device: GPUDevice, prepared: PreparedScene, buffers: SceneBvhBuffers, owner: GpuBufferSet): Promise<SceneAcceleration> {
-    if (prepared.acceleration.mode !== 'gpu') return new SceneAcceleration(device, prepared, buffers, null);
+    if (prepared.acceleration.mode !== 'gpu') {
+      const acceleration = new SceneAcceleration(device, prepared, buffers, null);
+      acceleration.writeBottomLevels();
+      return acceleration;
+    }
     const source = owner.upload('bvhSource', prepared.primitives, BufferUsage.STORAGE, 'scene');
     const builder = await GpuBvhBuilder.create(device, { source, primitiveCount: prepared.primitiveCount, primitives: buffers.primitives, nodes: buffers.bvhNodes, parents: buffers.bvhParents });
     const acceleration = new SceneAcceleration(device, prepared, buffers, { builder, source, owner });
     await acceleration.buildOnGpu();
+    acceleration.writeBottomLevels();
     return acceleration;
+  }
+
+  /**
+   * The bottom levels (CPU-built, instancing.ts) after the room of any top-level tree: only the
+   * top level is ever built on the GPU or rebuilt, so they are written once and again on a refit.
+   */
+  private writeBottomLevels(): void {
+    const b = this.prepared.bottomLevels;
+    if (!b) return;
+    const queue = this.device.queue;
+    queue.writeBuffer(this.buffers.primitives, b.primitiveBase * primitiveLayout.size, b.primitives);
+    queue.writeBuffer(this.buffers.bvhNodes, b.nodeBase * bvhNodeLayout.size, b.nodes);
+    queue.writeBuffer(this.buffers.bvhParents, b.nodeBase * 4, b.parents.buffer, b.parents.byteOffset, b.parents.byteLength);
   }
 
   private async buildOnGpu(): Promise<void> {
@@ -75,9 +96,10 @@ export class SceneAcceleration {
    * keeps the topology and recomputes every box on the GPU; a rebuild builds a fresh tree in this
    * scene's mode. Returns the wall time of the BVH work, ms.
    */
-  async update(flat: FlatPrimitives, how: BvhUpdateMode): Promise<number> {
+  async update(flat: FlatPrimitives, how: BvhUpdateMode, bottomLevelsMoved = false): Promise<number> {
     const started = performance.now();
     const queue = this.device.queue;
+    if (bottomLevelsMoved) this.writeBottomLevels();
     if (this.mode === 'gpu') {
       queue.writeBuffer(this.source!, 0, packPrimitives(flat, identity(flat.count)));
       if (how === 'refit') await this.builder!.refit();
