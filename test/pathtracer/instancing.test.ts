@@ -10,7 +10,12 @@ import { createWavefrontPathTracingComputeRenderer } from '../../src/pathtracer/
 import type { InstancingMode, WavefrontPathTracingOptions, WavefrontRendererSnapshot } from '../../src/index.ts';
 import { testDevice } from '../helpers/gpu.ts';
 import { meanDifferenceZ } from '../helpers/image-stats.ts';
-import { transformsCamera, transformsScene } from './instancing-scenes.ts';
+import { GpuRendererError } from '../../src/errors/gpu-renderer-error.ts';
+import { checkBufferLimits, planBuffers } from '../../src/pathtracer/buffer-plan.ts';
+import { createWavefrontPathTracingComputeConfig } from '../../src/pathtracer/config.ts';
+import { planInput } from '../../src/pathtracer/scene-plan.ts';
+import { normalizeWavefrontScene } from '../../src/scene/normalize-scene.ts';
+import { transformsCamera, transformsScene, trs } from './instancing-scenes.ts';
 
 const SIZE = 48;
 
@@ -52,4 +57,104 @@ test('placements through bottom levels render the flattened image: same seed to 
   const other = await render('always', 11, 16);
   const z = meanDifferenceZ(flat.image, other.image);
   assert.ok(z.every((v) => Math.abs(v) < 4), `mean difference z = ${z.map((v) => v.toFixed(2)).join(', ')}`);
+});
+
+/** Relative L1 distance of two images' colour channels. */
+function relativeL1(a: Float32Array, b: Float32Array): number {
+  let sum = 0, diff = 0;
+  for (let i = 0; i < a.length; i += 4) {
+    for (let c = 0; c < 3; c++) {
+      sum += Math.abs(a[i + c]!);
+      diff += Math.abs(a[i + c]! - b[i + c]!);
+    }
+  }
+  return diff / sum;
+}
+
+/** The scene moved: every placement turned and shifted, the shared sphere mesh inflated by 10 %. */
+function movedScene(): ReturnType<typeof transformsScene> {
+  const s = transformsScene();
+  const turn = trs([0.15, 0, -0.1], [0, 1, 0], 0.35, [1, 1, 1]);
+  return {
+    ...s,
+    meshes: s.meshes.map((m, i) => (i === 1 ? { ...m, positions: Array.from(m.positions, (v) => 1.1 * v) } : m)),
+    instances: s.instances.map((inst, i) => (i === 0 ? inst : { ...inst, transform: multiply(turn, inst.transform!) })),
+  };
+}
+
+function multiply(a: readonly number[], b: readonly number[]): number[] {
+  const out = new Array<number>(16).fill(0);
+  for (let c = 0; c < 4; c++) for (let r = 0; r < 4; r++) for (let k = 0; k < 4; k++) out[4 * c + r]! += a[4 * k + r]! * b[4 * c + k]!;
+  return out;
+}
+
+for (const [accelerationBuildMode, bvh] of [['cpu-upload', 'refit'], ['cpu-upload', 'rebuild'], ['gpu', 'refit']] as const) {
+  test(`moving placements and a shared mesh (${accelerationBuildMode}, ${bvh}): the image of a renderer created with the moved scene`, async () => {
+    const device = await testDevice();
+    const base = { device, width: SIZE, height: SIZE, maxDepth: 4, samplesPerPixel: 8, seed: 9, instancing: 'always' as const, accelerationBuildMode, camera: transformsCamera, environment: { color: [0.15, 0.17, 0.2] as [number, number, number] } };
+    const renderer = await createWavefrontPathTracingComputeRenderer({ ...base, ...transformsScene() });
+    const fresh = await createWavefrontPathTracingComputeRenderer({ ...base, ...movedScene() });
+    try {
+      await renderer.renderFrame();
+      const before = (await renderer.readRadiance()).data;
+      const moved = movedScene();
+      const stats = await renderer.updateGeometry({
+        meshes: moved.meshes.map((m, i) => (i === 1 ? { positions: m.positions } : null)),
+        instances: moved.instances.map((inst) => ({ transform: inst.transform ?? [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1] })),
+        bvh,
+      });
+      assert.equal(stats.bvh, bvh);
+      await renderer.renderFrame();
+      await fresh.renderFrame();
+      const updated = (await renderer.readRadiance()).data;
+      const want = (await fresh.readRadiance()).data;
+      assert.ok(relativeL1(updated, want) < 0.005, `updated vs created moved: relative L1 ${relativeL1(updated, want).toFixed(5)}`);
+      assert.ok(relativeL1(before, want) > 0.1, 'the update moved something');
+    } finally {
+      renderer.destroy();
+      fresh.destroy();
+    }
+  });
+}
+
+test('the megakernel traces placements through bottom levels too', async () => {
+  const flat = await render('off', 4, 8, { integrator: 'megakernel' });
+  const shared = await render('always', 4, 8, { integrator: 'megakernel' });
+  assert.equal(shared.stats.integrator, 'megakernel');
+  assert.ok(relativeL1(flat.image, shared.image) < 0.02, `relative L1 ${relativeL1(flat.image, shared.image).toFixed(4)}`);
+});
+
+test("'auto' shares a mesh placed often enough, flattens the rest; bad placements are typed errors naming the field", async () => {
+  const device = await testDevice();
+  const s = transformsScene();
+  // 40 more placements of the 320-triangle sphere: 13,440 added triangles if flattened.
+  const many = { ...s, instances: [...s.instances, ...Array.from({ length: 40 }, (_, i) => ({ mesh: 1, transform: trs([-2 + 0.1 * i, 0.3, -2], [0, 1, 0], i, [0.3, 0.3, 0.3]) }))] };
+  const auto = await createWavefrontPathTracingComputeRenderer({ device, width: 8, height: 8, camera: transformsCamera, ...many });
+  try {
+    const stats = auto.getSnapshot().instancing;
+    assert.equal(stats.mode, 'auto');
+    assert.equal(stats.sharedMeshes, 1, 'only the sphere is shared');
+    assert.equal(stats.placements, 44);
+    assert.equal(stats.bottomLevelTriangles, 320);
+    assert.equal(stats.placedTriangles, 44 * 320);
+    await assert.rejects(auto.updateGeometry({ instances: many.instances.map((_, i) => (i === 2 ? { transform: [NaN, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1] } : null)) }), (e: unknown) => e instanceof GpuRendererError && e.code === 'INVALID_INSTANCE' && e.field === 'instances[2].transform[0]');
+  } finally {
+    auto.destroy();
+  }
+  const bad = (instances: unknown[]): Promise<unknown> => createWavefrontPathTracingComputeRenderer({ device, width: 8, height: 8, ...s, instances: instances as never });
+  const rejects = async (instances: unknown[], code: string, field: string): Promise<void> => {
+    await assert.rejects(bad(instances), (e: unknown) => e instanceof GpuRendererError && e.code === code && e.field === field, `${code} at ${field}`);
+  };
+  await rejects([{ mesh: 1, transform: [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, Infinity, 0, 0, 1] }], 'INVALID_INSTANCE', 'instances[0].transform[12]');
+  await rejects([{ mesh: 1 }, { mesh: 1, transform: [1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1] }], 'INVALID_INSTANCE', 'instances[1].transform');
+  await rejects([{ mesh: 7 }], 'INVALID_INSTANCE', 'instances[0].mesh');
+  await rejects([{ mesh: 1, material: 3 }], 'INVALID_INSTANCE', 'instances[0].material');
+});
+
+test('SCENE_TOO_LARGE names what does not fit and by how much: the instance records, or flattened triangles', () => {
+  const scene = normalizeWavefrontScene({ ...transformsScene(), instances: Array.from({ length: 200_000 }, (_, i) => ({ mesh: 1, transform: trs([i, 0, 0], [0, 1, 0], 0, [1, 1, 1]) })) });
+  const limits = { maxStorageBufferBindingSize: 32 * 2 ** 20, maxBufferSize: 2 ** 30 } as GPUSupportedLimits;
+  const plan = (instancing: InstancingMode): Parameters<typeof checkBufferLimits>[1] => planBuffers(planInput(createWavefrontPathTracingComputeConfig({ width: 8, height: 8, instancing }), scene));
+  assert.throws(() => checkBufferLimits(limits, plan('always')), (e: unknown) => e instanceof GpuRendererError && e.code === 'SCENE_TOO_LARGE' && e.field === 'instances' && /instance buffer needs \d+ bytes .*too many/.test(e.message));
+  assert.throws(() => checkBufferLimits(limits, plan('off')), (e: unknown) => e instanceof GpuRendererError && e.code === 'SCENE_TOO_LARGE' && e.field === 'meshes' && /64000000 flattened triangles/.test(e.message));
 });
