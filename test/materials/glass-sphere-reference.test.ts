@@ -6,54 +6,22 @@
 // The sphere has 4 subdivisions (5120 facets): the renderers treat a delta direction on the wrong
 // side of a facet differently (Mitsuba continues it, scatter.wesl samples again about the
 // geometric normal), which stays below the noise here; on 320 facets the rims differ by 1-4%.
-//
-// Statistics: for every 8x8 block b and channel c, z = (ours - ref) / sqrt(se_ours^2 + se_ref^2),
-// se_ours from the renderer's per-pixel variance of the mean (glass-sphere-scene.ts; the iid
-// estimate, which for Owen-scrambled Sobol samples is typically conservative). Under equal
-// expectations z is about standard normal: with a family-wise false-alarm rate of 1e-3 over the
-// 3 B two-sided tests (Bonferroni), every |z| must stay below Phi^-1(1 - 1e-3 / (6 B)) (4.84 for
-// B = 256 blocks). The whole image's mean per channel likewise, at 1e-3 over its 3 tests (3.59).
+// The statistics: test/helpers/block-reference.ts.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
+import { assertMatchesReference, type BlockReference } from '../helpers/block-reference.ts';
 import { testDevice } from '../helpers/gpu.ts';
-import { glassSphereSpec as spec, readFixture, renderGlassSphere, type Vec3 } from './glass-sphere-scene.ts';
+import { glassSphereSpec as spec, readFixture, renderGlassSphere } from './glass-sphere-scene.ts';
 
-interface Reference {
-  matchesMaxDepth: number; blocksX: number; blocksY: number; samplesPerPixel: number;
-  imageMean: Vec3; imageStandardError: Vec3; mean: Vec3[]; standardError: Vec3[];
-}
-
-const reference = readFixture<Reference>('mitsuba-reference.json');
+const reference = readFixture<BlockReference>('mitsuba-reference.json');
 // 128 spp: ~10 s of rendering on lavapipe (at 64 the heavy tails of the caustics start to skew the
 // block means away from their normal approximation); GLASS_REFERENCE_SPP renders more.
 const spp = Number(process.env.GLASS_REFERENCE_SPP ?? 128);
-
-/** Phi^-1(1 - p) for small p (Abramowitz & Stegun 26.2.23, |error| < 4.5e-4). */
-function upperNormalQuantile(p: number): number {
-  const t = Math.sqrt(-2 * Math.log(p));
-  return t - (2.515517 + 0.802853 * t + 0.010328 * t * t) / (1 + 1.432788 * t + 0.189269 * t * t + 0.001308 * t * t * t);
-}
-
-// Blocks that both renderers see without noise (the black sky) must agree exactly: z 0 or infinite.
-function z(difference: number, se: number): number {
-  return se > 0 ? difference / se : difference === 0 ? 0 : Infinity;
-}
 
 test('glass sphere on a diffuse plane under a quad light agrees with Mitsuba 3 block by block (8x8 blocks, Bonferroni) and in the image mean', async (t) => {
   assert.equal(reference.matchesMaxDepth, spec.maxDepth, 'the reference was rendered at the matching depth');
   assert.equal(reference.blocksX * reference.blocksY, (spec.width / spec.block) * (spec.height / spec.block));
   const ours = await renderGlassSphere(await testDevice(), spec, spp, 17);
   assert.equal(ours.invalidSamples, 0);
-  const blocks = ours.mean.length;
-  const zBlock = upperNormalQuantile(1e-3 / (6 * blocks));
-  const zImage = upperNormalQuantile(1e-3 / 6);
-  const zs = ours.mean.map((m, b) => m.map((v, c) => z(v - reference.mean[b]![c]!, Math.hypot(ours.standardError[b]![c]!, reference.standardError[b]![c]!))));
-  const worst = Math.max(...zs.flat().map(Math.abs));
-  const beyond = (limit: number): number => zs.filter((zb) => zb.some((v) => Math.abs(v) > limit)).length;
-  const darker = zs.filter((zb) => zb.some((v) => v < -3.29)).length;
-  const zMean = ours.imageMean.map((v, c) => z(v - reference.imageMean[c]!, Math.hypot(ours.imageStandardError[c]!, reference.imageStandardError[c]!)));
-  t.diagnostic(`${spp} spp against Mitsuba's ${reference.samplesPerPixel}: blocks beyond 3.29 sigma ${beyond(3.29)} of ${blocks} (${darker} darker), beyond ${zBlock.toFixed(2)} sigma ${beyond(zBlock)}; worst |z| ${worst.toFixed(2)}`);
-  t.diagnostic(`image mean ours ${ours.imageMean.map((v) => v.toFixed(5)).join(' ')} vs ${reference.imageMean.map((v) => v.toFixed(5)).join(' ')}, z ${zMean.map((v) => v.toFixed(2)).join(' ')}`);
-  assert.ok(worst < zBlock, `a block differs beyond ${zBlock.toFixed(2)} sigma: worst |z| = ${worst.toFixed(2)}`);
-  for (const v of zMean) assert.ok(Math.abs(v) < zImage, `the image mean differs beyond ${zImage.toFixed(2)} sigma: z = ${zMean.map((x) => x.toFixed(2)).join(' ')}`);
+  assertMatchesReference(t, ours, reference, spp);
 });

@@ -3,11 +3,11 @@
 // to per-block statistics: used by glass-sphere-reference.test.ts, and by anyone measuring it at
 // more samples.
 import { readFileSync } from 'node:fs';
-import { createWavefrontPathTracingComputeRenderer } from '../../src/pathtracer/index.ts';
 import type { WavefrontMeshInput } from '../../src/scene/types.ts';
+import { renderBlockStats, type BlockStats, type Vec3 } from '../helpers/block-reference.ts';
 import { icosphere } from '../helpers/meshes.ts';
 
-export type Vec3 = [number, number, number];
+export type { Vec3 } from '../helpers/block-reference.ts';
 
 export interface GlassSphereSpec {
   width: number; height: number; block: number; maxDepth: number;
@@ -15,14 +15,6 @@ export interface GlassSphereSpec {
   sphere: { center: Vec3; radius: number; subdivisions: number; ior: number };
   plane: { halfSize: number; reflectance: Vec3 };
   light: { corners: Vec3[]; radiance: Vec3 };
-}
-
-/** Per block (row-major from the top-left) and channel: mean radiance and its standard error; the whole image's too. */
-export interface BlockStats {
-  mean: Vec3[];
-  standardError: Vec3[];
-  imageMean: Vec3;
-  imageStandardError: Vec3;
 }
 
 const fixtures = new URL('./fixtures/glass-sphere/', import.meta.url);
@@ -55,45 +47,12 @@ export function glassSphereMeshes(spec: GlassSphereSpec): WavefrontMeshInput[] {
   ];
 }
 
-/**
- * Block statistics from per-pixel means and variances of the mean (readAov('variance')): pixels
- * are independent, so a block's variance is the sum of its pixels' over n^2.
- */
-export function blockStats(spec: GlassSphereSpec, mean: Float32Array, variance: Float32Array): BlockStats {
-  const { width, height, block } = spec;
-  const n = block * block;
-  const out: BlockStats = { mean: [], standardError: [], imageMean: [0, 0, 0], imageStandardError: [0, 0, 0] };
-  const imageVariance: Vec3 = [0, 0, 0];
-  for (let j = 0; j < height / block; j++) {
-    for (let i = 0; i < width / block; i++) {
-      const m: Vec3 = [0, 0, 0], v: Vec3 = [0, 0, 0];
-      for (let y = j * block; y < (j + 1) * block; y++) {
-        for (let x = i * block; x < (i + 1) * block; x++) {
-          for (let c = 0; c < 3; c++) { m[c] += mean[4 * (y * width + x) + c]!; v[c] += variance[4 * (y * width + x) + c]!; }
-        }
-      }
-      out.mean.push(m.map((s) => s / n) as Vec3);
-      out.standardError.push(v.map((s) => Math.sqrt(s) / n) as Vec3);
-      for (let c = 0; c < 3; c++) { out.imageMean[c] += m[c]! / (width * height); imageVariance[c] += v[c]!; }
-    }
-  }
-  out.imageStandardError = imageVariance.map((s) => Math.sqrt(s) / (width * height)) as Vec3;
-  return out;
-}
-
 /** Renders the scene at `maxDepth` (default the spec's) and returns its block statistics. */
 export async function renderGlassSphere(device: GPUDevice, spec: GlassSphereSpec, spp: number, seed: number, maxDepth = spec.maxDepth): Promise<BlockStats & { invalidSamples: number }> {
   const c = spec.camera;
-  const renderer = await createWavefrontPathTracingComputeRenderer({
-    device, width: spec.width, height: spec.height, maxDepth, samplesPerPixel: spp, seed, aovs: true,
+  return renderBlockStats(spec, {
+    device, maxDepth, samplesPerPixel: spp, seed,
     camera: { type: 'perspective', position: c.position, target: c.target, up: c.up, fovYDegrees: c.fovYDegrees },
     meshes: glassSphereMeshes(spec),
   });
-  try {
-    const stats = await renderer.renderFrame();
-    const stat = blockStats(spec, (await renderer.readRadiance()).data, (await renderer.readAov('variance')).data);
-    return { ...stat, invalidSamples: stats.invalidSamples };
-  } finally {
-    renderer.destroy();
-  }
 }
