@@ -82,7 +82,7 @@ function movedScene(): ReturnType<typeof transformsScene> {
   };
 }
 
-function multiply(a: readonly number[], b: readonly number[]): number[] {
+function multiply(a: ArrayLike<number>, b: ArrayLike<number>): number[] {
   const out = new Array<number>(16).fill(0);
   for (let c = 0; c < 4; c++) for (let r = 0; r < 4; r++) for (let k = 0; k < 4; k++) out[4 * c + r]! += a[4 * k + r]! * b[4 * c + k]!;
   return out;
