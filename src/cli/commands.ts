@@ -83,6 +83,8 @@ export interface RenderCommand {
   accelerationBuildMode?: 'cpu-upload' | 'gpu';
   /** The path tracer's integrator (`--integrator`): 'wavefront' (the renderer's default) or 'megakernel'. */
   integrator?: 'wavefront' | 'megakernel';
+  /** Shared meshes through bottom-level trees (`--instancing`): 'auto' (the renderer's default), 'off' or 'always'. */
+  instancing?: 'auto' | 'off' | 'always';
   /** Origins the scene's references may be fetched from (`--allow-origin`, repeatable); default none. */
   allowedOrigins?: string[];
 }

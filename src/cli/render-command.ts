@@ -21,7 +21,7 @@ import { defaultAdaptiveSamplingParameters } from '../film/adaptive/converged-ma
 import { writeFrameFile } from '../io/frame-files.ts';
 import type { SequenceRendererOptions } from '../sequence/sequence-renderer.ts';
 import { createProgressBar, type ProgressEstimate, type ProgressStream } from './progress.ts';
-import type { RenderSummary } from './render-format.ts';
+import { describeGeometry, type RenderSummary } from './render-format.ts';
 import { isGltfPath, type RenderCommand } from './args.ts';
 import type { ResourcePolicy } from '../io/resource-policy.ts';
 
@@ -128,6 +128,7 @@ export function rendererSettings(command: RenderCommand): SequenceRendererOption
     energyCompensation: command.energyCompensation,
     ...(command.accelerationBuildMode ? { accelerationBuildMode: command.accelerationBuildMode } : {}),
     ...(command.integrator ? { integrator: command.integrator } : {}),
+    ...(command.instancing ? { instancing: command.instancing } : {}),
     ...(command.noiseThreshold !== undefined ? { adaptiveThreshold: command.noiseThreshold, minimumSamplesPerPixel } : {}),
   };
 }
@@ -272,6 +273,7 @@ export async function runRenderCommand(command: RenderCommand, io: { stderr: Pro
       invalidSamples: stats.invalidSamples,
       adapter: renderer.getSnapshot().adapter,
       lighting,
+      geometry: describeGeometry(renderer.getSnapshot()),
       out: command.out,
     };
   } finally {

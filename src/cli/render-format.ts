@@ -1,4 +1,5 @@
 /** The render command's closing summary (separate from the renderer so it is testable without a GPU). */
+import type { WavefrontRendererSnapshot } from '../pathtracer/types.ts';
 import { formatDuration } from './progress.ts';
 
 export interface RenderSummary {
@@ -33,7 +34,20 @@ export interface RenderSummary {
   adapter: string;
   /** What lit the scene, as a sentence ("lit by the scene's 2 punctual lights"); see scene-lighting.ts. */
   lighting?: string;
+  /** How the geometry is stored and traced (describeGeometry). */
+  geometry?: string;
   out: string;
+}
+
+/** The geometry line: placements of shared meshes, flattened triangles and the scene's GPU memory. */
+export function describeGeometry(s: Pick<WavefrontRendererSnapshot, 'instancing' | 'memory'>): string {
+  const i = s.instancing;
+  const mb = (bytes: number): string => `${(bytes / 2 ** 20).toFixed(1)} MiB`;
+  const count = (n: number): string => (n < 1000 ? String(n) : formatRate(n));
+  const shared = i.placements > 0
+    ? `${count(i.placements)} placements of ${i.sharedMeshes} shared mesh${i.sharedMeshes === 1 ? '' : 'es'} (${count(i.bottomLevelTriangles)} triangles stored once for ${count(i.placedTriangles)} placed, ${i.bytesPerPlacement} bytes per placement), `
+    : '';
+  return `geometry: ${shared}${count(i.flattenedTriangles)} triangles flattened (--instancing ${i.mode}); scene buffers ${mb(s.memory.sceneBytes)}`;
 }
 
 /** Engineering notation: 1234567 -> "1.23 M". */
@@ -64,6 +78,7 @@ export function formatSummary(s: RenderSummary): string {
       ? [`  first frame (${s.firstFrameSamplesPerPixel ?? '?'} spp, with shader compilation) ${formatDuration(s.firstFrameSeconds)}, before the clock: not in the rendering time, rates or --time`]
       : []),
     ...(s.lighting !== undefined ? [`  ${s.lighting}`] : []),
+    ...(s.geometry !== undefined ? [`  ${s.geometry}`] : []),
     `  adapter: ${s.adapter}${s.invalidSamples > 0 ? `; ${s.invalidSamples} invalid samples dropped` : ''}`,
   ].join('\n');
 }

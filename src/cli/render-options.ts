@@ -73,6 +73,7 @@ export const renderOptionSections: readonly OptionSection<RenderCommand>[] = [
       { flag: '--animation', value: '<name|index>', help: 'glTF: the animation to pose, by name or index (default the first)', apply: set('animation', nonEmpty('an animation name or index')) },
       { flag: '--at', value: '<seconds>', help: 'glTF: pose the animation at this time (default 0)', apply: set('at', finiteNumber(0)) },
       { flag: '--bvh-build', value: '<where>', help: 'cpu-upload (binned SAH on the CPU, the default) | gpu (LBVH built on the GPU: faster to build on a real GPU, its tree ~25-30 % costlier (SAH))', apply: set('accelerationBuildMode', oneOf('cpu-upload', 'gpu')) },
+      { flag: '--instancing', value: '<mode>', help: 'auto (meshes placed many times are stored once, each placement one record of the top-level tree; the default) | always (every placement through a bottom-level tree) | off (every placement flattened into world-space triangles); the same image', apply: set('instancing', oneOf('auto', 'off', 'always')) },
       { flag: '--integrator', value: '<form>', help: 'wavefront (queued stages per bounce, the default) | megakernel (one kernel runs each path through all its bounces; the same image)', apply: set('integrator', oneOf('wavefront', 'megakernel')) },
       {
         flag: '--allow-origin', value: '<origin>',
