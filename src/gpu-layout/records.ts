@@ -13,8 +13,11 @@ import { VERTEX_COLOR_WORDS, VERTEX_NORMAL_WORDS, VERTEX_POSITION_WORDS, VERTEX_
 /**
  * One traceable primitive in BVH order: a world-space triangle in Moller-Trumbore form, an
  * analytic shape (sphere: v0 = centre, e1.x = radius; box: v0 = min, e1 = max), or a placement of a
- * shared mesh (PRIMITIVE_SHAPE_INSTANCE: v0 = world min, e1 = world max). The triangles of
- * bottom-level trees (after the top level's) are in object space, with `instance` INDEX_NONE. `shape` packs the
+ * shared mesh (PRIMITIVE_SHAPE_INSTANCE: v0 = world min, e1 = world max, `primitive` the root node
+ * of its bottom level, e2.x the bits of its transform record's slot). After the top level come the
+ * bottom levels' triangles (object space, `instance` INDEX_NONE), then one transform record per
+ * placement: the rows of its world-to-object matrix in v0, e1, e2 and the bits of their
+ * translations in instance, primitive, shape (instancing.ts; the buffer has one record type). `shape` packs the
  * kind (PRIMITIVE_SHAPE_MASK), the alpha-tested flag and the alpha record index (see primitive-shape.ts).
  */
 export const primitiveLayout: StructLayout = defineStructLayout('Primitive', 2, [
@@ -91,10 +94,6 @@ export const instanceLayout: StructLayout = defineStructLayout('Instance', 2, [
   ['flags', 'u32', 'INSTANCE_FLAG_* bits and the shape kind'],
   ['lightBase', 'u32', 'light index of the mesh triangle 0 when the material emits, else INDEX_NONE'],
   ['objectId', 'u32', 'user-facing instance id (AOVs)'],
-  ['worldToObject0', 'vec4f', 'row 0 of the inverse of objectToWorld (rays enter a bottom-level tree in object space)'],
-  ['worldToObject1', 'vec4f', 'row 1'],
-  ['worldToObject2', 'vec4f', 'row 2'],
-  ['bottomLevelRoot', 'u32', 'root node of the shared mesh\'s bottom-level tree in bvhNodes, or INDEX_NONE when its triangles are in the top level'],
 ]);
 
 // ---- Materials and textures (bind group 1) --------------------------------------------------------

@@ -12,7 +12,7 @@ import { materialHeapCells } from './scene/pack-materials.ts';
 import { vertexStreamBytes } from './scene/pack-vertices.ts';
 import { denoiserFilmReads } from '../film/denoise/registry.ts';
 import type { PreparedScene } from './scene/prepare-scene.ts';
-import { bvhNodeCapacity, planInstancing, type InstancingPlan } from './scene/instancing.ts';
+import { bvhNodeCapacity, planInstancing, primitiveRecordCount, type InstancingPlan } from './scene/instancing.ts';
 
 /**
  * Sizes known from the validated scene, before the BVH is built: what the first limit check uses.
@@ -36,7 +36,7 @@ export function planInput(config: WavefrontPathTracingComputeConfig, scene: Norm
     wavesPerSubmission: config.output.maxFramePassesPerSubmission,
     framesInFlight: config.framesInFlight,
     ...vertexStreamBytes(scene.meshes),
-    primitiveCount: instancing.topPrimitiveCount + instancing.bottomLevelTriangles,
+    primitiveCount: primitiveRecordCount(instancing),
     bvhNodeCount: bvhNodeCapacity(instancing),
     geometry: geometryDescription(instancing, scene),
     alphaPrimitiveCount: instancing.alphaTriangles,

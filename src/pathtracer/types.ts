@@ -5,7 +5,9 @@ import type { WavefrontAovName } from '../film/aovs.ts';
 import type { WavefrontCameraInput, WavefrontSceneDescription, WavefrontToneMapping } from '../scene/types.ts';
 import type { WavefrontOutputOptions, WavefrontRenderFrameOptions } from './output-options.ts';
 import type { AccelerationBuildMode } from './scene/prepare-scene.ts';
-import type { InstancingMode } from './scene/instancing.ts';
+import type { InstancingMode, WavefrontInstancingStats } from './scene/instancing.ts';
+
+export type { WavefrontInstancingStats } from './scene/instancing.ts';
 import type { WavefrontGeometryUpdate, WavefrontGeometryUpdateStats } from './scene/geometry-update.ts';
 import type {
   WavefrontAdaptiveFrameStats,
@@ -127,23 +129,6 @@ export interface WavefrontRayCounts {
   extension: number;
   shadow: number;
   total: number;
-}
-
-export interface WavefrontInstancingStats {
-  mode: InstancingMode;
-  /** Meshes stored once with a bottom-level tree (per alpha/sidedness key). */
-  sharedMeshes: number;
-  /** Placements traced through a bottom level. */
-  placements: number;
-  /** Triangles stored once in bottom levels (they stand for `placedTriangles`). */
-  bottomLevelTriangles: number;
-  placedTriangles: number;
-  /** Triangles flattened into the top level in world space. */
-  flattenedTriangles: number;
-  /** Records of the top-level tree: flattened triangles, placements and analytic shapes. */
-  topLevelRecords: number;
-  /** GPU bytes each placement adds: its instance record, its top-level record and about two tree nodes. */
-  bytesPerPlacement: number;
 }
 
 export interface WavefrontMemoryStats {

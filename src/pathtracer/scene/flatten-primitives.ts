@@ -14,7 +14,7 @@ import { allocateStructArray } from '../../gpu-layout/struct-layout.ts';
 import type { NormalizedInstance } from '../../scene/instance.ts';
 import type { NormalizedScene } from '../../scene/normalize-scene.ts';
 import { writeAlphaRecord } from './alpha-records.ts';
-import { instanceMaterial, meshBounds, placementBounds, type InstancingPlan } from './instancing.ts';
+import { instanceMaterial, meshBounds, placementBounds, placementTransformRecords, type InstancingPlan } from './instancing.ts';
 import type { TextureInfoOffsets } from './pack-materials.ts';
 
 export { instanceMaterial } from './instancing.ts';
@@ -36,6 +36,9 @@ export interface FlatPrimitives {
   shape: Uint32Array;
   alphaPrimitives: ArrayBuffer;
   alphaCount: number;
+  /** One transform record per placement (placementTransformRecords), for slots from `placementTransformBase`. */
+  placementTransforms: ArrayBuffer;
+  placementTransformBase: number;
   bounds: { min: [number, number, number]; max: [number, number, number] };
 }
 
@@ -46,7 +49,11 @@ export function transformPoint(inst: NormalizedInstance, x: number, y: number, z
   out[at + 2] = m[8]! * x + m[9]! * y + m[10]! * z + m[11]!;
 }
 
-export function flattenPrimitives(scene: NormalizedScene, infoOffset: TextureInfoOffsets, plan: InstancingPlan): FlatPrimitives {
+/**
+ * `bottomLevelRoots`: the root node of each of the plan's bottom levels (null when it has none),
+ * which the placements' top-level records name.
+ */
+export function flattenPrimitives(scene: NormalizedScene, infoOffset: TextureInfoOffsets, plan: InstancingPlan, bottomLevelRoots: Uint32Array | null = null): FlatPrimitives {
   // An empty scene still needs one record: a zero triangle every traversal rejects.
   const count = plan.topPrimitiveCount;
   const boundsTriangles = new Float32Array(count * 9);
@@ -114,7 +121,9 @@ export function flattenPrimitives(scene: NormalizedScene, infoOffset: TextureInf
       }
     }
   });
-  for (const instanceIndex of placements) {
+  const placementTransformBase = plan.topPrimitiveCount + plan.bottomLevelTriangles;
+  const geometryBits = new Uint32Array(geometry.buffer);
+  for (const [ordinal, instanceIndex] of placements.entries()) {
     const inst = scene.instances[instanceIndex]!;
     let objectBox = boxes.get(inst.mesh);
     if (!objectBox) boxes.set(inst.mesh, (objectBox = meshBounds(scene.meshes[inst.mesh]!)));
@@ -127,10 +136,11 @@ export function flattenPrimitives(scene: NormalizedScene, infoOffset: TextureInf
       geometry[o + c] = box[c]!;
       geometry[o + 3 + c] = box[3 + c]!;
     }
+    geometryBits[o + 6] = placementTransformBase + ordinal;
     grow(box[0]!, box[1]!, box[2]!);
     grow(box[3]!, box[4]!, box[5]!);
     instance[k] = instanceIndex;
-    primitive[k] = 0;
+    primitive[k] = bottomLevelRoots ? bottomLevelRoots[plan.bottomLevelOf[instanceIndex]!]! : INDEX_NONE;
     shape[k] = PRIMITIVE_SHAPE_INSTANCE;
     k++;
   }
@@ -157,6 +167,8 @@ export function flattenPrimitives(scene: NormalizedScene, infoOffset: TextureInf
     shape,
     alphaPrimitives,
     alphaCount,
+    placementTransforms: placementTransformRecords(placements.map((i) => scene.instances[i]!)),
+    placementTransformBase,
     bounds: empty ? { min: [0, 0, 0], max: [0, 0, 0] } : { min, max },
   };
 }

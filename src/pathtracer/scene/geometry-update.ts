@@ -13,7 +13,7 @@ import { affineFromColumnMajor, type NormalizedInstance } from '../../scene/inst
 import { normalizeWavefrontMesh, type NormalizedMesh } from '../../scene/mesh.ts';
 import type { NormalizedScene } from '../../scene/normalize-scene.ts';
 import { flattenPrimitives, type FlatPrimitives } from './flatten-primitives.ts';
-import { refitBottomLevels, worldToObjectRows, type BottomLevels } from './instancing.ts';
+import { bottomLevelRoots, refitBottomLevels, type BottomLevels } from './instancing.ts';
 import { buildLightTable, type LightTable } from './light-table.ts';
 import { packVertexStreams } from './pack-vertices.ts';
 import type { PreparedScene } from './prepare-scene.ts';
@@ -111,11 +111,7 @@ function patchInstances(records: ArrayBuffer, scene: NormalizedScene): ArrayBuff
     const m = inst.objectToWorld;
     const n = inst.normalToWorld;
     const flags = readStruct(instanceLayout, view, i).flags as number;
-    const [w0, w1, w2] = worldToObjectRows(inst);
     writeStruct(instanceLayout, view, i, {
-      worldToObject0: w0,
-      worldToObject1: w1,
-      worldToObject2: w2,
       objectToWorld0: [m[0]!, m[1]!, m[2]!, m[3]!],
       objectToWorld1: [m[4]!, m[5]!, m[6]!, m[7]!],
       objectToWorld2: [m[8]!, m[9]!, m[10]!, m[11]!],
@@ -145,7 +141,7 @@ export function packGeometryUpdate(scene: NormalizedScene, prepared: PreparedSce
   const instances = instanceInputs ? scene.instances.map((inst, i) => (instanceInputs[i] == null ? inst : instanceUpdate(inst, instanceInputs[i], i))) : scene.instances;
   const next: NormalizedScene = { ...scene, meshes, instances };
   const infoOffset = (texture: number, srgb: boolean): number => prepared.atlas.infoOffset(texture, srgb);
-  const flat = flattenPrimitives(next, infoOffset, prepared.instancing);
+  const flat = flattenPrimitives(next, infoOffset, prepared.instancing, prepared.bottomLevels ? bottomLevelRoots(prepared.bottomLevels) : null);
   let lights: LightTable | null = null;
   if (prepared.lightCount > 0) {
     lights = buildLightTable(next, infoOffset);

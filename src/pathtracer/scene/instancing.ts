@@ -17,7 +17,6 @@ import { buildBvhAsync } from '../../accel/bvh-builder.ts';
 import { bvhParentLinks, packPrimitives, packWavefrontBvhNodes } from '../../accel/triangle-packing.ts';
 import { INDEX_NONE, PRIMITIVE_ALPHA_SHIFT, PRIMITIVE_FLAG_ALPHA, PRIMITIVE_FLAG_SINGLE_SIDED, PRIMITIVE_SHAPE_TRIANGLE } from '../../gpu-layout/constants.ts';
 import { alphaPrimitiveLayout, bvhNodeLayout, instanceLayout, primitiveLayout } from '../../gpu-layout/records.ts';
-import type { WavefrontInstancingStats } from '../types.ts';
 import { allocateStructArray, fieldOf } from '../../gpu-layout/struct-layout.ts';
 import type { NormalizedInstance } from '../../scene/instance.ts';
 import type { NormalizedMesh } from '../../scene/mesh.ts';
@@ -64,6 +63,8 @@ export interface InstancingPlan {
   topPrimitiveCount: number;
   /** Alpha-tested triangles over the top level and the bottom levels. */
   alphaTriangles: number;
+  /** Alpha-tested triangles flattened into the top level. */
+  topAlphaTriangles: number;
 }
 
 /** Instance material: its override or its mesh's. */
@@ -93,6 +94,7 @@ export function planInstancing(scene: NormalizedScene, mode: InstancingMode = 'a
   let flattenedTriangles = 0;
   let bottomLevelTriangles = 0;
   let alphaTriangles = 0;
+  let topAlphaTriangles = 0;
   for (const members of groups.values()) {
     const first = scene.instances[members[0]!]!;
     const triangles = scene.meshes[first.mesh]!.triangleCount;
@@ -101,7 +103,10 @@ export function planInstancing(scene: NormalizedScene, mode: InstancingMode = 'a
     const shared = mode === 'always' || (mode === 'auto' && members.length > 1 && (members.length - 1) * triangles >= autoInstancingMinTriangles);
     if (!shared || triangles === 0) {
       flattenedTriangles += members.length * triangles;
-      if (alpha) alphaTriangles += members.length * triangles;
+      if (alpha) {
+        alphaTriangles += members.length * triangles;
+        topAlphaTriangles += members.length * triangles;
+      }
       continue;
     }
     for (const i of members) bottomLevelOf[i] = bottomLevels.length;
@@ -111,10 +116,15 @@ export function planInstancing(scene: NormalizedScene, mode: InstancingMode = 'a
   }
   const placements = bottomLevels.reduce((sum, b) => sum + b.placements, 0);
   const topPrimitiveCount = Math.max(1, flattenedTriangles + placements + scene.sceneObjects.length);
-  return { mode, bottomLevelOf, bottomLevels, flattenedTriangles, placements, bottomLevelTriangles, topPrimitiveCount, alphaTriangles };
+  return { mode, bottomLevelOf, bottomLevels, flattenedTriangles, placements, bottomLevelTriangles, topPrimitiveCount, alphaTriangles, topAlphaTriangles };
 }
 
 /** Upper bound of BVH nodes over the top level and every bottom level (a binary tree over n has 2n - 1). */
+/** Records of the primitive buffer: the top level, the bottom levels' triangles and the placements' transforms. */
+export function primitiveRecordCount(plan: InstancingPlan): number {
+  return plan.topPrimitiveCount + plan.bottomLevelTriangles + plan.placements;
+}
+
 export function bvhNodeCapacity(plan: InstancingPlan): number {
   return 2 * plan.topPrimitiveCount - 1 + 2 * plan.bottomLevelTriangles - plan.bottomLevels.length;
 }
@@ -163,6 +173,30 @@ export function worldToObjectRows(inst: NormalizedInstance): [number[], number[]
     const row = [n[r]!, n[3 + r]!, n[6 + r]!];
     return [...row, -(row[0]! * t[0]! + row[1]! * t[1]! + row[2]! * t[2]!)];
   }) as [number[], number[], number[]];
+}
+
+/**
+ * A placement's world-to-object transform as one record of the primitive buffer (its one record
+ * type): the rows' linear parts in v0, e1, e2 and the bits of their translations in instance,
+ * primitive, shape (bvh-traversal.wesl's object_ray reads them back).
+ */
+export function placementTransformRecords(placements: readonly NormalizedInstance[]): ArrayBuffer {
+  const out = new ArrayBuffer(placements.length * primitiveLayout.size);
+  const f = new Float32Array(out);
+  const u = new Uint32Array(out);
+  const rows = [fieldOf(primitiveLayout, 'v0').offset / 4, fieldOf(primitiveLayout, 'e1').offset / 4, fieldOf(primitiveLayout, 'e2').offset / 4];
+  const translations = [fieldOf(primitiveLayout, 'instance').offset / 4, fieldOf(primitiveLayout, 'primitive').offset / 4, fieldOf(primitiveLayout, 'shape').offset / 4];
+  const bits = new Float32Array(1);
+  const bitsU = new Uint32Array(bits.buffer);
+  placements.forEach((inst, k) => {
+    const o = k * (primitiveLayout.size / 4);
+    worldToObjectRows(inst).forEach((row, r) => {
+      for (let c = 0; c < 3; c++) f[o + rows[r]! + c] = row[c]!;
+      bits[0] = row[3]!;
+      u[o + translations[r]!] = bitsU[0]!;
+    });
+  });
+  return out;
 }
 
 /** The bottom-level trees of a scene, laid out after the top level in the shared buffers. */
@@ -352,6 +386,23 @@ export function refitBottomLevels(scene: NormalizedScene, plan: InstancingPlan, 
   });
 }
 
+export interface WavefrontInstancingStats {
+  mode: InstancingMode;
+  /** Meshes stored once with a bottom-level tree (per alpha/sidedness key). */
+  sharedMeshes: number;
+  /** Placements traced through a bottom level. */
+  placements: number;
+  /** Triangles stored once in bottom levels (they stand for `placedTriangles`). */
+  bottomLevelTriangles: number;
+  placedTriangles: number;
+  /** Triangles flattened into the top level in world space. */
+  flattenedTriangles: number;
+  /** Records of the top-level tree: flattened triangles, placements and analytic shapes. */
+  topLevelRecords: number;
+  /** GPU bytes each placement adds: its instance record, its top-level and transform records and about two tree nodes. */
+  bytesPerPlacement: number;
+}
+
 /** What the renderer reports of a plan (WavefrontInstancingStats). */
 export function instancingStats(scene: NormalizedScene, plan: InstancingPlan): WavefrontInstancingStats {
   let placedTriangles = 0;
@@ -366,6 +417,11 @@ export function instancingStats(scene: NormalizedScene, plan: InstancingPlan): W
     placedTriangles,
     flattenedTriangles: plan.flattenedTriangles,
     topLevelRecords: plan.topPrimitiveCount,
-    bytesPerPlacement: instanceLayout.size + primitiveLayout.size + 2 * (bvhNodeLayout.size + 4),
+    bytesPerPlacement: instanceLayout.size + 2 * primitiveLayout.size + 2 * (bvhNodeLayout.size + 4),
   };
+}
+
+/** Per bottom level of `bottom`: its root node. */
+export function bottomLevelRoots(bottom: BottomLevels): Uint32Array {
+  return Uint32Array.from(bottom.levels, (l) => l.root);
 }

@@ -2,7 +2,7 @@ import { INDEX_NONE, INSTANCE_FLAG_HAS_COLORS, INSTANCE_FLAG_HAS_NORMALS, INSTAN
 import { instanceLayout } from '../../gpu-layout/records.ts';
 import { allocateStructArray, writeStruct } from '../../gpu-layout/struct-layout.ts';
 import type { NormalizedScene } from '../../scene/normalize-scene.ts';
-import { instanceMaterial, worldToObjectRows } from './instancing.ts';
+import { instanceMaterial } from './instancing.ts';
 import type { PackedVertexStreams } from './pack-vertices.ts';
 
 function rows(m: ArrayLike<number>, stride: number): [number[], number[], number[]] {
@@ -14,7 +14,7 @@ function rows(m: ArrayLike<number>, stride: number): [number[], number[], number
  * (sphere: the unit sphere scaled by the radius about the centre; box: the unit cube scaled to
  * max - min at min), each pointing at its material core in the heap.
  */
-export function packInstances(scene: NormalizedScene, streams: PackedVertexStreams, materialOffsets: readonly number[], objectMaterialOffsets: readonly number[], lightBase: Uint32Array, bottomLevelRoot: Uint32Array): ArrayBuffer {
+export function packInstances(scene: NormalizedScene, streams: PackedVertexStreams, materialOffsets: readonly number[], objectMaterialOffsets: readonly number[], lightBase: Uint32Array): ArrayBuffer {
   const count = scene.instances.length + scene.sceneObjects.length;
   const buffer = allocateStructArray(instanceLayout, count);
   const view = new DataView(buffer);
@@ -29,12 +29,9 @@ export function packInstances(scene: NormalizedScene, streams: PackedVertexStrea
       (mesh.uvs ? INSTANCE_FLAG_HAS_UV0 : 0) |
       (mesh.uvs1 ? INSTANCE_FLAG_HAS_UV1 : 0) |
       (mesh.colors ? INSTANCE_FLAG_HAS_COLORS : 0);
-    const [w0, w1, w2] = worldToObjectRows(inst);
     writeStruct(instanceLayout, view, i, {
       objectToWorld0: o0, objectToWorld1: o1, objectToWorld2: o2,
       normalToWorld0: n0, normalToWorld1: n1, normalToWorld2: n2,
-      worldToObject0: w0, worldToObject1: w1, worldToObject2: w2,
-      bottomLevelRoot: bottomLevelRoot[i]!,
       ...streams.streams[inst.mesh]!,
       firstIndex: streams.firstIndex[inst.mesh]!,
       material: materialOffsets[instanceMaterial(scene, inst)]!,
@@ -54,10 +51,6 @@ export function packInstances(scene: NormalizedScene, streams: PackedVertexStrea
       normalToWorld0: [1 / scale[0]!, 0, 0, 0],
       normalToWorld1: [0, 1 / scale[1]!, 0, 0],
       normalToWorld2: [0, 0, 1 / scale[2]!, 0],
-      worldToObject0: [1 / scale[0]!, 0, 0, -object.a[0] / scale[0]!],
-      worldToObject1: [0, 1 / scale[1]!, 0, -object.a[1] / scale[1]!],
-      worldToObject2: [0, 0, 1 / scale[2]!, -object.a[2] / scale[2]!],
-      bottomLevelRoot: INDEX_NONE,
       positions: INDEX_NONE, normals: INDEX_NONE, tangents: INDEX_NONE, colors: INDEX_NONE, uv0: INDEX_NONE, uv1: INDEX_NONE,
       material: objectMaterialOffsets[k]!,
       flags: sphere ? PRIMITIVE_SHAPE_SPHERE : PRIMITIVE_SHAPE_BOX,

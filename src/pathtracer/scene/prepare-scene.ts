@@ -1,13 +1,11 @@
 import { buildBvhAsync, type BvhBuildResult } from '../../accel/bvh-builder.ts';
 import { bvhParentLinks, packPrimitives, packWavefrontBvhNodes } from '../../accel/triangle-packing.ts';
-import { INDEX_NONE } from '../../gpu-layout/constants.ts';
-import { alphaPrimitiveLayout } from '../../gpu-layout/records.ts';
 import { Vec4Heap } from '../../gpu-layout/vec4-heap.ts';
 import { buildTextureAtlas, type TextureAtlas } from '../../materials/textures/texture-atlas.ts';
 import type { AtlasLimits } from '../../materials/textures/atlas-packer.ts';
 import type { NormalizedScene } from '../../scene/normalize-scene.ts';
 import { flattenPrimitives, type FlatPrimitives } from './flatten-primitives.ts';
-import { buildBottomLevels, planInstancing, type BottomLevels, type InstancingMode, type InstancingPlan } from './instancing.ts';
+import { bottomLevelRoots, buildBottomLevels, planInstancing, type BottomLevels, type InstancingMode, type InstancingPlan } from './instancing.ts';
 import { buildLightTable } from './light-table.ts';
 import { packInstances } from './pack-instances.ts';
 import { packMaterialTables, packMaterials, planMaterials, textureUsages, type MaterialFeatureUses, type TextureInfoOffsets } from './pack-materials.ts';
@@ -33,6 +31,8 @@ export interface PreparedScene {
   /** Which placements go through bottom-level trees, and the trees (null when none do). */
   instancing: InstancingPlan;
   bottomLevels: BottomLevels | null;
+  /** The placements' transform records, for primitive slots from `base` (rewritten when placements move). */
+  placementTransforms: { base: number; records: ArrayBuffer };
   bvh: { nodeCount: number; depth: number; sahCost: number; buildTimeMs: number };
   /**
    * How the BVH is built. 'cpu-upload': `bvhNodes`, `bvhParents` and `primitives` (in BVH order,
@@ -95,8 +95,9 @@ export async function prepareGeometry(
   const streams = packVertexStreams(scene.meshes);
   const lights = buildLightTable(scene, infoOffset);
   const plan = planInstancing(scene, options.instancing);
-  const flat = flattenPrimitives(scene, infoOffset, plan);
-  const bottomLevels = plan.bottomLevels.length > 0 ? await buildBottomLevels(scene, plan, infoOffset, flat.alphaPrimitives.byteLength / alphaPrimitiveLayout.size, options.signal ? { signal: options.signal } : {}) : null;
+  // The top level's alpha records come first (at least one record, as every buffer).
+  const bottomLevels = plan.bottomLevels.length > 0 ? await buildBottomLevels(scene, plan, infoOffset, Math.max(1, plan.topAlphaTriangles), options.signal ? { signal: options.signal } : {}) : null;
+  const flat = flattenPrimitives(scene, infoOffset, plan, bottomLevels ? bottomLevelRoots(bottomLevels) : null);
   const gpu = options.accelerationBuildMode === 'gpu';
   const cpuBvh = gpu ? null : await buildBvhAsync(flat.boundsTriangles, options.signal ? { signal: options.signal } : {});
   const bvh = cpuBvh ?? gpuBuildPending(flat.count);
@@ -107,7 +108,7 @@ export async function prepareGeometry(
     bvhNodes: nodes,
     bvhParents: gpu ? new Uint32Array(0) : bvhParentLinks(nodes, bvh.nodeCount),
     alphaPrimitives: bottomLevels ? concatBuffers(flat.alphaPrimitives, bottomLevels.alphaPrimitives) : flat.alphaPrimitives,
-    instances: packInstances(scene, streams, materials.materialOffsets, materials.objectMaterialOffsets, lights.lightBase, bottomLevelRoots(plan, bottomLevels)),
+    instances: packInstances(scene, streams, materials.materialOffsets, materials.objectMaterialOffsets, lights.lightBase),
     indices: streams.indices,
     vertexStreams: streams.vertexStreams,
     materials: materials.heap.finish(),
@@ -119,6 +120,7 @@ export async function prepareGeometry(
     triangleCount: scene.triangleCount,
     instancing: plan,
     bottomLevels,
+    placementTransforms: { base: flat.placementTransformBase, records: flat.placementTransforms },
     bvh: { nodeCount: bvh.nodeCount, depth: bvh.depth, sahCost: bvh.sahCost, buildTimeMs: bvh.buildTimeMs },
     acceleration: { mode: gpu ? 'gpu' : 'cpu-upload', order: gpu ? null : bvh.triangleOrder },
     sceneCenter,
@@ -143,11 +145,6 @@ export function sceneExtent(scene: NormalizedScene, flat: FlatPrimitives): { sce
   const sceneCenter: [number, number, number] = [0.5 * (min[0] + max[0]), 0.5 * (min[1] + max[1]), 0.5 * (min[2] + max[2])];
   const sceneRadius = empty ? 1 : Math.max(1e-6, 0.5 * Math.hypot(max[0] - min[0], max[1] - min[1], max[2] - min[2]));
   return { sceneCenter, sceneRadius };
-}
-
-/** Per scene instance: the root node of its bottom level, INDEX_NONE when it is flattened. */
-export function bottomLevelRoots(plan: InstancingPlan, bottom: BottomLevels | null): Uint32Array {
-  return Uint32Array.from(plan.bottomLevelOf, (b) => (b >= 0 && bottom ? bottom.levels[b]!.root : INDEX_NONE));
 }
 
 function concatBuffers(a: ArrayBuffer, b: ArrayBuffer): ArrayBuffer {

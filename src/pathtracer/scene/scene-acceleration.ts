@@ -79,6 +79,7 @@ export class SceneAcceleration {
     const b = this.prepared.bottomLevels;
     if (!b) return;
     const queue = this.device.queue;
+    this.writePlacementTransforms(this.prepared.placementTransforms.records);
     queue.writeBuffer(this.buffers.primitives, b.primitiveBase * primitiveLayout.size, b.primitives);
     queue.writeBuffer(this.buffers.bvhNodes, b.nodeBase * bvhNodeLayout.size, b.nodes);
     queue.writeBuffer(this.buffers.bvhParents, b.nodeBase * 4, b.parents.buffer, b.parents.byteOffset, b.parents.byteLength);
@@ -96,10 +97,17 @@ export class SceneAcceleration {
    * keeps the topology and recomputes every box on the GPU; a rebuild builds a fresh tree in this
    * scene's mode. Returns the wall time of the BVH work, ms.
    */
+  private writePlacementTransforms(records: ArrayBuffer): void {
+    if (records.byteLength === 0) return;
+    this.device.queue.writeBuffer(this.buffers.primitives, this.prepared.placementTransforms.base * primitiveLayout.size, records);
+  }
+
   async update(flat: FlatPrimitives, how: BvhUpdateMode, bottomLevelsMoved = false): Promise<number> {
     const started = performance.now();
     const queue = this.device.queue;
     if (bottomLevelsMoved) this.writeBottomLevels();
+    this.prepared.placementTransforms = { base: flat.placementTransformBase, records: flat.placementTransforms };
+    this.writePlacementTransforms(flat.placementTransforms);
     if (this.mode === 'gpu') {
       queue.writeBuffer(this.source!, 0, packPrimitives(flat, identity(flat.count)));
       if (how === 'refit') await this.builder!.refit();
