@@ -8,7 +8,7 @@ import { describe, fail, isArrayLike } from '../../errors/validate.ts';
 import { GpuRendererError } from '../../errors/gpu-renderer-error.ts';
 import { INSTANCE_FLAG_NEGATIVE_DETERMINANT } from '../../gpu-layout/constants.ts';
 import { instanceLayout } from '../../gpu-layout/records.ts';
-import { readStruct, writeStruct } from '../../gpu-layout/struct-layout.ts';
+import { fieldOf } from '../../gpu-layout/struct-layout.ts';
 import { affineFromColumnMajor, type NormalizedInstance } from '../../scene/instance.ts';
 import { normalizeWavefrontMesh, type NormalizedMesh } from '../../scene/mesh.ts';
 import type { NormalizedScene } from '../../scene/normalize-scene.ts';
@@ -103,23 +103,37 @@ function entries<T>(value: unknown, count: number, field: 'meshes' | 'instances'
   return value as ReadonlyArray<T | null | undefined>;
 }
 
-/** The packed instance records with new transforms (the rest of each record is kept). */
+// Word offsets of the fields patchInstances rewrites, from the layout.
+const instanceWords = instanceLayout.size / 4;
+const at = (name: string): number => fieldOf(instanceLayout, name).offset / 4;
+const patched = { objectToWorld: [at('objectToWorld0'), at('objectToWorld1'), at('objectToWorld2')], normalToWorld: [at('normalToWorld0'), at('normalToWorld1'), at('normalToWorld2')], flags: at('flags') };
+
+/**
+ * The packed instance records with new transforms (the rest of each record is kept), written
+ * word by word: moving 10,000 placements per frame patches 10,000 records.
+ */
 function patchInstances(records: ArrayBuffer, scene: NormalizedScene): ArrayBuffer {
   const out = records.slice(0);
-  const view = new DataView(out);
+  const f = new Float32Array(out);
+  const u = new Uint32Array(out);
   scene.instances.forEach((inst, i) => {
+    const o = i * instanceWords;
     const m = inst.objectToWorld;
     const n = inst.normalToWorld;
-    const flags = readStruct(instanceLayout, view, i).flags as number;
-    writeStruct(instanceLayout, view, i, {
-      objectToWorld0: [m[0]!, m[1]!, m[2]!, m[3]!],
-      objectToWorld1: [m[4]!, m[5]!, m[6]!, m[7]!],
-      objectToWorld2: [m[8]!, m[9]!, m[10]!, m[11]!],
-      normalToWorld0: [n[0]!, n[1]!, n[2]!, 0],
-      normalToWorld1: [n[3]!, n[4]!, n[5]!, 0],
-      normalToWorld2: [n[6]!, n[7]!, n[8]!, 0],
-      flags: inst.determinant < 0 ? flags | INSTANCE_FLAG_NEGATIVE_DETERMINANT : flags & ~INSTANCE_FLAG_NEGATIVE_DETERMINANT,
-    });
+    for (let r = 0; r < 3; r++) {
+      const w = o + patched.objectToWorld[r]!;
+      f[w] = m[4 * r]!;
+      f[w + 1] = m[4 * r + 1]!;
+      f[w + 2] = m[4 * r + 2]!;
+      f[w + 3] = m[4 * r + 3]!;
+      const v = o + patched.normalToWorld[r]!;
+      f[v] = n[3 * r]!;
+      f[v + 1] = n[3 * r + 1]!;
+      f[v + 2] = n[3 * r + 2]!;
+      f[v + 3] = 0;
+    }
+    const flags = u[o + patched.flags]!;
+    u[o + patched.flags] = inst.determinant < 0 ? flags | INSTANCE_FLAG_NEGATIVE_DETERMINANT : flags & ~INSTANCE_FLAG_NEGATIVE_DETERMINANT;
   });
   return out;
 }

@@ -183,18 +183,21 @@ export function worldToObjectRows(inst: NormalizedInstance): [number[], number[]
 export function placementTransformRecords(placements: readonly NormalizedInstance[]): ArrayBuffer {
   const out = new ArrayBuffer(placements.length * primitiveLayout.size);
   const f = new Float32Array(out);
-  const u = new Uint32Array(out);
   const rows = [fieldOf(primitiveLayout, 'v0').offset / 4, fieldOf(primitiveLayout, 'e1').offset / 4, fieldOf(primitiveLayout, 'e2').offset / 4];
   const translations = [fieldOf(primitiveLayout, 'instance').offset / 4, fieldOf(primitiveLayout, 'primitive').offset / 4, fieldOf(primitiveLayout, 'shape').offset / 4];
-  const bits = new Float32Array(1);
-  const bitsU = new Uint32Array(bits.buffer);
   placements.forEach((inst, k) => {
     const o = k * (primitiveLayout.size / 4);
-    worldToObjectRows(inst).forEach((row, r) => {
-      for (let c = 0; c < 3; c++) f[o + rows[r]! + c] = row[c]!;
-      bits[0] = row[3]!;
-      u[o + translations[r]!] = bitsU[0]!;
-    });
+    // Row r of inverse(A) is column r of normalToWorld (inverse(A)^T); the translation is -inverse(A) t.
+    const n = inst.normalToWorld;
+    const m = inst.objectToWorld;
+    for (let r = 0; r < 3; r++) {
+      const x = n[r]!, y = n[3 + r]!, z = n[6 + r]!;
+      f[o + rows[r]!] = x;
+      f[o + rows[r]! + 1] = y;
+      f[o + rows[r]! + 2] = z;
+      // The translation's f32 bits go into the record's u32 word.
+      f[o + translations[r]!] = -(x * m[3]! + y * m[7]! + z * m[11]!);
+    }
   });
   return out;
 }
