@@ -11,6 +11,8 @@
  *   --raster-only    | BENCH_ONLY=raster    run the raster renderer benchmark alone
  *   --no-lighting    | BENCH_LIGHTING=0     skip the lighting benchmark (environment sampling, light tree, portals)
  *   --lighting-only  | BENCH_ONLY=lighting  run the lighting benchmark alone
+ *   --no-instancing  | BENCH_INSTANCING=0   skip the instancing benchmark (two-level acceleration: forest, flattened vs instanced)
+ *   --instancing-only | BENCH_ONLY=instancing run the instancing benchmark alone
  *   --output         | BENCH_OUTPUT=1       add the production-output benchmark (off by default: minutes)
  *   --output-only    | BENCH_ONLY=output    run the production-output benchmark alone
  *   --no-gpu         | BENCH_GPU=0          skip the GPU figures (bench/gpu.ts: the path tracer's defaults at 1080p)
@@ -38,6 +40,8 @@ export interface BenchOptions {
   raster: boolean;
   /** The lighting benchmark (bench/lighting.ts). */
   lighting: boolean;
+  /** The instancing benchmark (bench/instancing.ts, a child process). */
+  instancing: boolean;
   /** The production-output benchmark: opt-in. */
   output: boolean;
   /** The GPU figures (bench/gpu.ts). */
@@ -89,6 +93,8 @@ export function parseBenchOptions(
       'raster-only': { type: 'boolean' },
       'no-lighting': { type: 'boolean' },
       'lighting-only': { type: 'boolean' },
+      'no-instancing': { type: 'boolean' },
+      'instancing-only': { type: 'boolean' },
       output: { type: 'boolean' },
       'no-output': { type: 'boolean' },
       'output-only': { type: 'boolean' },
@@ -113,7 +119,7 @@ export function parseBenchOptions(
   const roundsText = values.rounds ?? env.BENCH_ROUNDS;
   const rounds = roundsText === undefined || roundsText === '' ? DEFAULT_ROUNDS : positiveInteger(roundsText, values.rounds !== undefined ? '--rounds' : 'BENCH_ROUNDS');
   // One part alone: --x-only on the command line, else BENCH_ONLY=x.
-  const parts = ['bvh', 'gltf', 'raster', 'lighting', 'output', 'gpu', 'browser'] as const;
+  const parts = ['bvh', 'gltf', 'raster', 'lighting', 'instancing', 'output', 'gpu', 'browser'] as const;
   const flagged = parts.filter((p) => values[`${p}-only`] === true);
   if (flagged.length > 1) throw new Error(`--${flagged[0]}-only and --${flagged[1]}-only exclude each other`);
   const fromEnv = parts.find((p) => env.BENCH_ONLY?.toLowerCase() === p);
@@ -127,10 +133,11 @@ export function parseBenchOptions(
   const gltf = on('gltf', env.BENCH_GLTF);
   const raster = on('raster', env.BENCH_RASTER);
   const lighting = on('lighting', env.BENCH_LIGHTING);
+  const instancing = on('instancing', env.BENCH_INSTANCING);
   const gpu = on('gpu', env.BENCH_GPU);
   const outputOn = !values['no-output'] && (values.output === true || (env.BENCH_OUTPUT !== undefined && !off(env.BENCH_OUTPUT)));
   const output = only === 'output' || (only === null && outputOn);
   const browserOn = !values['no-browser'] && (values.browser === true || (env.BENCH_BROWSER !== undefined && !off(env.BENCH_BROWSER)));
   const browser = only === 'browser' || (only === null && browserOn);
-  return { baseline, rounds, bvh, gltf, raster, lighting, output, gpu, browser, pathTracer: only === null };
+  return { baseline, rounds, bvh, gltf, raster, lighting, instancing, output, gpu, browser, pathTracer: only === null };
 }

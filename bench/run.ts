@@ -21,6 +21,7 @@ import type { SceneComparison, Spread, VersionSceneSummary } from './pathtracer-
 import { runBvhBenchmark } from './bvh.ts';
 import { runNodeChild } from './child-protocol.ts';
 import { printGltfResult, type GltfBenchResult } from './gltf.ts';
+import { printInstancingResult, type InstancingBenchResult } from './instancing.ts';
 import { runRasterBenchmark } from './raster.ts';
 import { isCpuAdapter } from './cpu-clock.ts';
 
@@ -44,7 +45,7 @@ let options: BenchOptions;
 try {
   options = parseBenchOptions(process.argv.slice(2), process.env, await readBaselineFile());
 } catch (error) {
-  console.error(`bench: ${(error as Error).message}\nusage: npm run bench -- [--baseline <ref> | --no-baseline] [--rounds <n>] [--no-bvh | --bvh-only] [--no-gltf | --gltf-only] [--no-raster | --raster-only] [--no-lighting | --lighting-only] [--output | --output-only] [--no-gpu | --gpu-only] [--browser | --browser-only]`);
+  console.error(`bench: ${(error as Error).message}\nusage: npm run bench -- [--baseline <ref> | --no-baseline] [--rounds <n>] [--no-bvh | --bvh-only] [--no-gltf | --gltf-only] [--no-raster | --raster-only] [--no-lighting | --lighting-only] [--no-instancing | --instancing-only] [--output | --output-only] [--no-gpu | --gpu-only] [--browser | --browser-only]`);
   process.exit(2);
 }
 
@@ -102,6 +103,23 @@ if (options.gltf) {
   }
 } else {
   console.log('glTF benchmark skipped (--no-gltf / BENCH_GLTF=0, or another --x-only)');
+}
+
+// Instancing (bench/instancing.ts: forest of EXT_mesh_gpu_instancing placements, flattened vs
+// instanced, TLAS updates; a child process): off with --no-instancing / BENCH_INSTANCING=0 or another --x-only.
+if (options.instancing) {
+  console.log('\nInstancing: two-level acceleration on a generated forest .glb, flattened vs instanced, TLAS updates (bench/instancing.ts, child process)');
+  const outcome = await runNodeChild([fileURLToPath(new URL('./instancing-child.ts', import.meta.url))], repoRoot, Number(process.env.BENCH_CHILD_TIMEOUT_S ?? 1800) * 1000);
+  if (outcome.ok) {
+    results.instancing = outcome.value;
+    printInstancingResult(outcome.value as InstancingBenchResult);
+  } else {
+    results.instancing = { error: outcome.error };
+    console.log(`  instancing benchmark FAILED: ${outcome.error}`);
+    process.exitCode = 1;
+  }
+} else {
+  console.log('instancing benchmark skipped (--no-instancing / BENCH_INSTANCING=0, or another --x-only)');
 }
 
 const fixed = (v: number, digits = 3): string => v.toFixed(digits);
