@@ -88,13 +88,13 @@ export interface GltfBenchResult {
   totalSeconds: number;
 }
 
-function spread(values: number[]): Spread {
+export function spread(values: number[]): Spread {
   const s = [...values].sort((a, b) => a - b);
   const m = s.length >> 1;
   return { median: s.length % 2 ? s[m]! : (s[m - 1]! + s[m]!) / 2, min: s[0]!, max: s[s.length - 1]!, all: values };
 }
 
-function envInteger(name: string, fallback: number): number {
+export function envInteger(name: string, fallback: number): number {
   const n = Number(process.env[name]);
   return Number.isInteger(n) && n > 0 ? n : fallback;
 }

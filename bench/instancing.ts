@@ -53,13 +53,9 @@ import type { WavefrontCameraInput, WavefrontSceneDescription } from '../src/sce
 import { cpuMark, isCpuAdapter, otherLoadCores, workerCpuSeconds } from './cpu-clock.ts';
 import { forestGlb, TREES, type ForestAsset } from './instancing-assets.ts';
 import { icosphere } from './pathtracer.ts';
+import { envInteger, spread, type Spread } from './gltf.ts';
 
-export interface Spread {
-  median: number;
-  min: number;
-  max: number;
-  all: number[];
-}
+export type { Spread } from './gltf.ts';
 
 type BuildMode = 'cpu-upload' | 'gpu';
 
@@ -169,17 +165,6 @@ export interface InstancingBenchResult {
    */
   measuredBytesPerPlacement: number | null;
   totalSeconds: number;
-}
-
-function spread(values: number[]): Spread {
-  const s = [...values].sort((a, b) => a - b);
-  const m = s.length >> 1;
-  return { median: s.length % 2 ? s[m]! : (s[m - 1]! + s[m]!) / 2, min: s[0]!, max: s[s.length - 1]!, all: values };
-}
-
-function envInteger(name: string, fallback: number): number {
-  const n = Number(process.env[name]);
-  return Number.isInteger(n) && n > 0 ? n : fallback;
 }
 
 const MAX_DEPTH = 8;
