@@ -2,11 +2,9 @@
 // summary says how every scene was lit; --env none renders with no light.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { spawn } from 'node:child_process';
 import { mkdtemp, readFile, rm, writeFile } from 'node:fs/promises';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
-import { fileURLToPath } from 'node:url';
 import { Document, NodeIO } from '@gltf-transform/core';
 import { ALL_EXTENSIONS, KHRLightsPunctual } from '@gltf-transform/extensions';
 import { decode } from 'fast-png';
@@ -14,19 +12,10 @@ import { applyCliLighting, NEUTRAL_LIGHTING_SUMMARY } from '../../src/cli/scene-
 import { loadGltfScene } from '../../src/io/gltf/load-gltf-scene.ts';
 import { createCornellBoxScene } from '../../src/scene/cornell-box.ts';
 import { isGpuRendererError } from '../../src/errors/gpu-renderer-error.ts';
+import { runCli } from '../helpers/cli-process.ts';
 
-const root = fileURLToPath(new URL('../..', import.meta.url));
-const cli = join(root, 'src/cli/main.ts');
 
-function run(args: string[]): Promise<{ code: number | null; stderr: string }> {
-  return new Promise((resolve, reject) => {
-    const child = spawn(process.execPath, [cli, ...args], { cwd: root, stdio: ['ignore', 'ignore', 'pipe'] });
-    let stderr = '';
-    child.stderr.setEncoding('utf8').on('data', (d: string) => (stderr += d));
-    child.on('error', reject);
-    child.on('close', (code) => resolve({ code, stderr }));
-  });
-}
+const run = runCli;
 
 /** A white quad facing a camera node 3 units away on +Z; a point light when `lit`. */
 function quadDocument(lit = false): Document {
