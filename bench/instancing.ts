@@ -46,6 +46,7 @@ import { loadGltfScene } from '../src/io/index.ts';
 import { createWavefrontPathTracingComputeRenderer } from '../src/pathtracer/index.ts';
 import { packGeometryUpdate, type WavefrontGeometryUpdate } from '../src/pathtracer/scene/geometry-update.ts';
 import { planInstancing, type InstancingMode } from '../src/pathtracer/scene/instancing.ts';
+import { applyTopLevelPatch } from '../src/pathtracer/scene/top-level-patch.ts';
 import { prepareGeometry, prepareMaterials, type PreparedMaterials, type PreparedScene } from '../src/pathtracer/scene/prepare-scene.ts';
 import type { WavefrontInstancingStats, WavefrontPathTracingOptions, WavefrontPathTracingRenderer } from '../src/pathtracer/types.ts';
 import { normalizeWavefrontScene, type NormalizedScene } from '../src/scene/normalize-scene.ts';
@@ -317,20 +318,25 @@ async function renderRounds(live: LiveRenderers, variants: Variant[], size: numb
 
 /**
  * The CPU side of one update as the renderer runs it (renderer-updates.ts, scene-acceleration.ts),
- * outside any renderer: packGeometryUpdate, the top level's primitive records, and for a CPU
- * rebuild its binned-SAH build, node records and parent links. Nothing is uploaded or waited for.
+ * outside any renderer: packGeometryUpdate, then either the patch of the moved placements' records
+ * (a refit that moves instances only: applyTopLevelPatch, on the bench's own prepared scene) or the
+ * top level's primitive records and, for a CPU rebuild, its binned-SAH build, node records and
+ * parent links. Nothing is uploaded or waited for.
  */
 async function cpuSideOfUpdate(p: Prepared, prepared: PreparedScene, update: WavefrontGeometryUpdate, mode: BuildMode): Promise<number> {
   const t0 = performance.now();
   const packed = packGeometryUpdate(p.normalized, prepared, update);
-  if (mode === 'gpu') {
-    packPrimitives(packed.flat, Uint32Array.from({ length: packed.flat.count }, (_, i) => i));
+  const { flat, patch } = packed.topLevel;
+  if (patch) {
+    applyTopLevelPatch(prepared, patch);
+  } else if (mode === 'gpu') {
+    packPrimitives(flat, Uint32Array.from({ length: flat.count }, (_, i) => i));
   } else if (packed.bvh === 'refit') {
-    packPrimitives(packed.flat, prepared.acceleration.order!);
+    packPrimitives(flat, prepared.acceleration.order!);
   } else {
-    const bvh = await buildBvhAsync(packed.flat.boundsTriangles);
+    const bvh = await buildBvhAsync(flat.boundsTriangles);
     const nodes = packWavefrontBvhNodes(bvh);
-    packPrimitives(packed.flat, bvh.triangleOrder);
+    packPrimitives(flat, bvh.triangleOrder);
     bvhParentLinks(nodes, bvh.nodeCount);
   }
   return performance.now() - t0;

@@ -16,7 +16,7 @@ export interface TriangleMeta {
 }
 
 // Word offsets of the fields, taken from the layout so a layout change cannot silently misplace them.
-const W = {
+export const PRIMITIVE_FIELD_WORDS = {
   v0: fieldOf(primitiveLayout, 'v0').offset / 4,
   instance: fieldOf(primitiveLayout, 'instance').offset / 4,
   e1: fieldOf(primitiveLayout, 'e1').offset / 4,
@@ -25,6 +25,7 @@ const W = {
   shape: fieldOf(primitiveLayout, 'shape').offset / 4,
 };
 export const PRIMITIVE_WORDS = primitiveLayout.size / 4;
+const W = PRIMITIVE_FIELD_WORDS;
 
 /**
  * A triangle whose edges are parallel to within 1e-6 rad (collinear "needles", zero area up to
@@ -44,6 +45,19 @@ function collapseNeedle(f: Float32Array, o: number): void {
   }
 }
 
+/**
+ * The nine geometry floats of one record at word `o`: v0 then the edges (triangles) or the shape
+ * parameters, `g[at..at + 9]`. Triangles' needles are collapsed (collapseNeedle).
+ */
+export function writePrimitiveGeometry(f: Float32Array, o: number, g: ArrayLike<number>, at: number, shape: number): void {
+  for (let c = 0; c < 3; c++) {
+    f[o + W.v0 + c] = g[at + c]!;
+    f[o + W.e1 + c] = g[at + 3 + c]!;
+    f[o + W.e2 + c] = g[at + 6 + c]!;
+  }
+  if ((shape & PRIMITIVE_SHAPE_MASK) === PRIMITIVE_SHAPE_TRIANGLE) collapseNeedle(f, o);
+}
+
 /** Primitives of any shape in BVH order: slot s holds flat primitive `order[s]`. */
 export function packPrimitives(
   flat: { geometry: Float32Array; instance: Uint32Array; primitive: Uint32Array; shape: Uint32Array },
@@ -56,13 +70,7 @@ export function packPrimitives(
   for (let s = 0; s < count; s++) {
     const k = order[s]!;
     const o = s * PRIMITIVE_WORDS;
-    const g = 9 * k;
-    for (let c = 0; c < 3; c++) {
-      f[o + W.v0 + c] = flat.geometry[g + c]!;
-      f[o + W.e1 + c] = flat.geometry[g + 3 + c]!;
-      f[o + W.e2 + c] = flat.geometry[g + 6 + c]!;
-    }
-    if ((flat.shape[k]! & PRIMITIVE_SHAPE_MASK) === PRIMITIVE_SHAPE_TRIANGLE) collapseNeedle(f, o);
+    writePrimitiveGeometry(f, o, flat.geometry, 9 * k, flat.shape[k]!);
     u[o + W.instance] = flat.instance[k]!;
     u[o + W.primitive] = flat.primitive[k]!;
     u[o + W.shape] = flat.shape[k]!;

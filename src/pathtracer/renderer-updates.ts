@@ -29,7 +29,7 @@ export async function updateGeometry(s: RendererState, update: WavefrontGeometry
   const started = performance.now();
   const p = s.scene.prepared;
   const packed = packGeometryUpdate(s.scene.normalized, p, update);
-  const extent = sceneExtent(packed.scene, packed.flat);
+  const extent = sceneExtent(packed.scene, packed.bounds);
   const lighting = packed.lights
     ? buildGpuLighting({ config: s.config.lighting, triangles: { records: packed.lights.records, count: packed.lights.count }, sceneCenter: extent.sceneCenter, sceneRadius: extent.sceneRadius })
     : s.lighting;
@@ -54,7 +54,7 @@ export async function updateGeometry(s: RendererState, update: WavefrontGeometry
   p.sceneRadius = extent.sceneRadius;
   writeFrameUniforms(s);
   if (packed.bottomLevels) p.bottomLevels = packed.bottomLevels;
-  const accelerationMs = await s.acceleration!.update(packed.flat, packed.bvh, packed.bottomLevels !== null);
+  const accelerationMs = await s.acceleration!.update(packed.topLevel, packed.bvh, packed.bottomLevels !== null);
   resetAccumulation(s);
   return { bvh: packed.bvh, accelerationMs, totalMs: performance.now() - started };
 }

@@ -71,13 +71,13 @@ function relativeL1(a: Float32Array, b: Float32Array): number {
   return diff / sum;
 }
 
-/** The scene moved: every placement turned and shifted, the shared sphere mesh inflated by 10 %. */
-function movedScene(): ReturnType<typeof transformsScene> {
+/** The scene moved: every placement turned and shifted, and (`meshes`) the shared sphere mesh inflated by 10 %. */
+function movedScene(meshes = true): ReturnType<typeof transformsScene> {
   const s = transformsScene();
   const turn = trs([0.15, 0, -0.1], [0, 1, 0], 0.35, [1, 1, 1]);
   return {
     ...s,
-    meshes: s.meshes.map((m, i) => (i === 1 ? { ...m, positions: Array.from(m.positions, (v) => 1.1 * v) } : m)),
+    meshes: s.meshes.map((m, i) => (meshes && i === 1 ? { ...m, positions: Array.from(m.positions, (v) => 1.1 * v) } : m)),
     instances: s.instances.map((inst, i) => (i === 0 ? inst : { ...inst, transform: multiply(turn, inst.transform!) })),
   };
 }
@@ -88,18 +88,28 @@ function multiply(a: ArrayLike<number>, b: ArrayLike<number>): number[] {
   return out;
 }
 
-for (const [accelerationBuildMode, bvh] of [['cpu-upload', 'refit'], ['cpu-upload', 'rebuild'], ['gpu', 'refit']] as const) {
-  test(`moving placements and a shared mesh (${accelerationBuildMode}, ${bvh}): the image of a renderer created with the moved scene`, async () => {
+// Moving meshes takes the full path (flatten, pack, refit or rebuild); moving instances only with a
+// refit patches the moved records (top-level-patch.ts), placements ('always') and flattened
+// instances ('off') alike.
+const moves = [
+  { instancing: 'always', accelerationBuildMode: 'cpu-upload', bvh: 'refit', meshes: true },
+  { instancing: 'always', accelerationBuildMode: 'cpu-upload', bvh: 'rebuild', meshes: true },
+  { instancing: 'always', accelerationBuildMode: 'gpu', bvh: 'refit', meshes: true },
+  { instancing: 'always', accelerationBuildMode: 'cpu-upload', bvh: 'refit', meshes: false },
+  { instancing: 'off', accelerationBuildMode: 'gpu', bvh: 'refit', meshes: false },
+] as const;
+for (const { instancing, accelerationBuildMode, bvh, meshes } of moves) {
+  test(`moving placements${meshes ? ' and a shared mesh' : ' only'} ('${instancing}', ${accelerationBuildMode}, ${bvh}): the image of a renderer created with the moved scene`, async () => {
     const device = await testDevice();
-    const base = { device, width: SIZE, height: SIZE, maxDepth: 4, samplesPerPixel: 8, seed: 9, instancing: 'always' as const, accelerationBuildMode, camera: transformsCamera, environment: { color: [0.15, 0.17, 0.2] as [number, number, number] } };
+    const base = { device, width: SIZE, height: SIZE, maxDepth: 4, samplesPerPixel: 8, seed: 9, instancing, accelerationBuildMode, camera: transformsCamera, environment: { color: [0.15, 0.17, 0.2] as [number, number, number] } };
     const renderer = await createWavefrontPathTracingComputeRenderer({ ...base, ...transformsScene() });
-    const fresh = await createWavefrontPathTracingComputeRenderer({ ...base, ...movedScene() });
+    const fresh = await createWavefrontPathTracingComputeRenderer({ ...base, ...movedScene(meshes) });
     try {
       await renderer.renderFrame();
       const before = (await renderer.readRadiance()).data;
-      const moved = movedScene();
+      const moved = movedScene(meshes);
       const stats = await renderer.updateGeometry({
-        meshes: moved.meshes.map((m, i) => (i === 1 ? { positions: m.positions } : null)),
+        ...(meshes ? { meshes: moved.meshes.map((m, i) => (i === 1 ? { positions: m.positions } : null)) } : {}),
         instances: moved.instances.map((inst) => ({ transform: inst.transform ?? [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1] })),
         bvh,
       });

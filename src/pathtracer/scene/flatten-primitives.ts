@@ -39,8 +39,79 @@ export interface FlatPrimitives {
   /** One transform record per placement (placementTransformRecords), for slots from `placementTransformBase`. */
   placementTransforms: ArrayBuffer;
   placementTransformBase: number;
-  bounds: { min: [number, number, number]; max: [number, number, number] };
+  /** World box of each instance's geometry (6 per instance: min, max; empty: +inf, -inf): what a patch keeps of unmoved instances. */
+  instanceBounds: Float64Array;
+  bounds: SceneBounds;
 }
+
+export interface SceneBounds {
+  min: [number, number, number];
+  max: [number, number, number];
+}
+
+/** The scene's world box: the instances' boxes and the analytic objects (a zero box when empty). */
+export function sceneBounds(scene: NormalizedScene, instanceBounds: Float64Array): SceneBounds {
+  const min: [number, number, number] = [Infinity, Infinity, Infinity];
+  const max: [number, number, number] = [-Infinity, -Infinity, -Infinity];
+  const grow = (box: ArrayLike<number>, at: number): void => {
+    for (let c = 0; c < 3; c++) {
+      if (box[at + c]! < min[c]!) min[c] = box[at + c]!;
+      if (box[at + 3 + c]! > max[c]!) max[c] = box[at + 3 + c]!;
+    }
+  };
+  for (let i = 0; i < scene.instances.length; i++) grow(instanceBounds, 6 * i);
+  for (const object of scene.sceneObjects) grow(objectBox(object), 0);
+  return min[0] <= max[0] ? { min, max } : { min: [0, 0, 0], max: [0, 0, 0] };
+}
+
+function objectBox(object: NormalizedScene['sceneObjects'][number]): number[] {
+  const lo = object.type === 'sphere' ? object.a.map((c) => c - object.b[0]) : object.a;
+  const hi = object.type === 'sphere' ? object.a.map((c) => c + object.b[0]) : object.b;
+  return [...lo, ...hi];
+}
+
+/**
+ * The index of each instance's first top-level record in flattenPrimitives' order: the flattened
+ * instances' triangles in scene order, then (from `placementsFrom`) one record per placement of a
+ * shared mesh.
+ */
+export function topLevelFirstRecords(scene: NormalizedScene, plan: InstancingPlan): { first: Uint32Array; placementsFrom: number } {
+  const first = new Uint32Array(scene.instances.length);
+  let k = 0;
+  scene.instances.forEach((inst, i) => {
+    if (plan.bottomLevelOf[i]! >= 0) return;
+    first[i] = k;
+    k += scene.meshes[inst.mesh]!.triangleCount;
+  });
+  const placementsFrom = k;
+  scene.instances.forEach((_, i) => {
+    if (plan.bottomLevelOf[i]! >= 0) first[i] = k++;
+  });
+  return { first, placementsFrom };
+}
+
+/**
+ * The world-space triangle t of a flattened instance into `w` (9 f64: v0, v1, v2), and its corners
+ * grown into the instance's box (`bounds` at 6 i).
+ */
+export function placeTriangle(mesh: NormalizedScene['meshes'][number], inst: NormalizedInstance, t: number, w: Float64Array, bounds: Float64Array, at: number): void {
+  for (let c = 0; c < 3; c++) {
+    const v = mesh.indices[3 * t + c]!;
+    transformPoint(inst, mesh.positions[3 * v]!, mesh.positions[3 * v + 1]!, mesh.positions[3 * v + 2]!, w, 3 * c);
+    for (let a = 0; a < 3; a++) {
+      const x = w[3 * c + a]!;
+      if (x < bounds[at + a]!) bounds[at + a] = x;
+      if (x > bounds[at + 3 + a]!) bounds[at + 3 + a] = x;
+    }
+  }
+}
+
+/** The instance's sidedness and handedness bits of its triangle records (back-face culling, bvh-traversal.wesl). */
+export function sidednessBits(doubleSided: boolean, inst: NormalizedInstance): number {
+  return (doubleSided ? 0 : PRIMITIVE_FLAG_SINGLE_SIDED) | (inst.determinant < 0 ? PRIMITIVE_FLAG_MIRRORED : 0);
+}
+
+const EMPTY_BOX = [Infinity, Infinity, Infinity, -Infinity, -Infinity, -Infinity];
 
 export function transformPoint(inst: NormalizedInstance, x: number, y: number, z: number, out: Float64Array, at: number): void {
   const m = inst.objectToWorld;
@@ -61,16 +132,8 @@ export function flattenPrimitives(scene: NormalizedScene, infoOffset: TextureInf
   const instance = new Uint32Array(count).fill(INDEX_NONE);
   const primitive = new Uint32Array(count);
   const shape = new Uint32Array(count);
-  const min: [number, number, number] = [Infinity, Infinity, Infinity];
-  const max: [number, number, number] = [-Infinity, -Infinity, -Infinity];
-  const grow = (x: number, y: number, z: number): void => {
-    if (x < min[0]) min[0] = x;
-    if (y < min[1]) min[1] = y;
-    if (z < min[2]) min[2] = z;
-    if (x > max[0]) max[0] = x;
-    if (y > max[1]) max[1] = y;
-    if (z > max[2]) max[2] = z;
-  };
+  const instanceBounds = new Float64Array(6 * scene.instances.length);
+  for (let i = 0; i < scene.instances.length; i++) instanceBounds.set(EMPTY_BOX, 6 * i);
   let alphaCount = 0;
   scene.instances.forEach((inst, i) => {
     const mesh = scene.meshes[inst.mesh]!;
@@ -93,15 +156,9 @@ export function flattenPrimitives(scene: NormalizedScene, infoOffset: TextureInf
     const mesh = scene.meshes[inst.mesh]!;
     const material = scene.materials[instanceMaterial(scene, inst)]!;
     const alpha = material.alphaMode !== 'OPAQUE';
-    // Back-face culling of camera rays (bvh-traversal.wesl) needs the material's sidedness and the
-    // instance's handedness.
-    const sides = (material.doubleSided ? 0 : PRIMITIVE_FLAG_SINGLE_SIDED) | (inst.determinant < 0 ? PRIMITIVE_FLAG_MIRRORED : 0);
+    const sides = sidednessBits(material.doubleSided, inst);
     for (let t = 0; t < mesh.triangleCount; t++, k++) {
-      for (let c = 0; c < 3; c++) {
-        const v = mesh.indices[3 * t + c]!;
-        transformPoint(inst, mesh.positions[3 * v]!, mesh.positions[3 * v + 1]!, mesh.positions[3 * v + 2]!, w, 3 * c);
-        grow(w[3 * c]!, w[3 * c + 1]!, w[3 * c + 2]!);
-      }
+      placeTriangle(mesh, inst, t, w, instanceBounds, 6 * instanceIndex);
       const o = 9 * k;
       for (let i = 0; i < 9; i++) boundsTriangles[o + i] = w[i]!;
       geometry[o] = w[0]!;
@@ -137,8 +194,7 @@ export function flattenPrimitives(scene: NormalizedScene, infoOffset: TextureInf
       geometry[o + 3 + c] = box[3 + c]!;
     }
     geometryBits[o + 6] = placementTransformBase + ordinal;
-    grow(box[0]!, box[1]!, box[2]!);
-    grow(box[3]!, box[4]!, box[5]!);
+    instanceBounds.set(box, 6 * instanceIndex);
     instance[k] = instanceIndex;
     primitive[k] = bottomLevelRoots ? bottomLevelRoots[plan.bottomLevelOf[instanceIndex]!]! : INDEX_NONE;
     shape[k] = PRIMITIVE_SHAPE_INSTANCE;
@@ -146,18 +202,14 @@ export function flattenPrimitives(scene: NormalizedScene, infoOffset: TextureInf
   }
   scene.sceneObjects.forEach((object, i) => {
     const o = 9 * k;
-    const lo = object.type === 'sphere' ? object.a.map((c) => c - object.b[0]) : object.a;
-    const hi = object.type === 'sphere' ? object.a.map((c) => c + object.b[0]) : object.b;
-    boundsTriangles.set([...lo, ...hi, ...hi], o);
-    grow(lo[0]!, lo[1]!, lo[2]!);
-    grow(hi[0]!, hi[1]!, hi[2]!);
+    const box = objectBox(object);
+    boundsTriangles.set([...box, ...box.slice(3)], o);
     geometry.set([...object.a, ...object.b, 0, 0, 0], o);
     instance[k] = scene.instances.length + i;
     primitive[k] = 0;
     shape[k] = object.type === 'sphere' ? PRIMITIVE_SHAPE_SPHERE : PRIMITIVE_SHAPE_BOX;
     k++;
   });
-  const empty = !(min[0] <= max[0]);
   return {
     count,
     boundsTriangles,
@@ -169,6 +221,7 @@ export function flattenPrimitives(scene: NormalizedScene, infoOffset: TextureInf
     alphaCount,
     placementTransforms: placementTransformRecords(placements.map((i) => scene.instances[i]!)),
     placementTransformBase,
-    bounds: empty ? { min: [0, 0, 0], max: [0, 0, 0] } : { min, max },
+    instanceBounds,
+    bounds: sceneBounds(scene, instanceBounds),
   };
 }

@@ -12,12 +12,13 @@ import { fieldOf } from '../../gpu-layout/struct-layout.ts';
 import { affineFromColumnMajor, type NormalizedInstance } from '../../scene/instance.ts';
 import { normalizeWavefrontMesh, type NormalizedMesh } from '../../scene/mesh.ts';
 import type { NormalizedScene } from '../../scene/normalize-scene.ts';
-import { flattenPrimitives, type FlatPrimitives } from './flatten-primitives.ts';
+import { flattenPrimitives, type FlatPrimitives, type SceneBounds } from './flatten-primitives.ts';
 import { bottomLevelRoots, refitBottomLevels, type BottomLevels } from './instancing.ts';
 import { buildLightTable, type LightTable } from './light-table.ts';
 import { packVertexStreams } from './pack-vertices.ts';
 import type { PreparedScene } from './prepare-scene.ts';
 import type { BvhUpdateMode } from './scene-acceleration.ts';
+import { patchTopLevel, type TopLevelPatch } from './top-level-patch.ts';
 
 /** New vertex data of one mesh: positions, and normals / tangents where the mesh has them (omitted: kept). */
 export interface WavefrontMeshGeometryUpdate {
@@ -52,10 +53,17 @@ export interface WavefrontGeometryUpdateStats {
   totalMs: number;
 }
 
+/**
+ * The top level after an update: the whole scene flattened again (moved meshes, a rebuild), or a
+ * patch of the records of the moved instances (top-level-patch.ts).
+ */
+export type TopLevelUpdate = { flat: FlatPrimitives; patch?: never } | { patch: TopLevelPatch; flat?: never };
+
 /** What an update writes, all packed before the first write. */
 export interface PackedGeometryUpdate {
   scene: NormalizedScene;
-  flat: FlatPrimitives;
+  topLevel: TopLevelUpdate;
+  bounds: SceneBounds;
   bvh: BvhUpdateMode;
   vertexStreams: Uint32Array | null;
   instances: ArrayBuffer | null;
@@ -92,7 +100,9 @@ function instanceUpdate(inst: NormalizedInstance, input: unknown, index: number)
   for (const key of Object.keys(input)) {
     if (key !== 'transform') fail('INVALID_INSTANCE', `${field}.${key}`, 'a geometry update changes the transform only');
   }
-  return { ...inst, ...affineFromColumnMajor((input as WavefrontInstanceTransformUpdate).transform, `${field}.transform`) };
+  const { objectToWorld, normalToWorld, determinant } = affineFromColumnMajor((input as WavefrontInstanceTransformUpdate).transform, `${field}.transform`);
+  // A literal, not a spread: moving 10,000 placements per frame makes 10,000 of these.
+  return { id: inst.id, mesh: inst.mesh, material: inst.material, objectToWorld, normalToWorld, determinant };
 }
 
 function entries<T>(value: unknown, count: number, field: 'meshes' | 'instances'): ReadonlyArray<T | null | undefined> | null {
@@ -155,7 +165,18 @@ export function packGeometryUpdate(scene: NormalizedScene, prepared: PreparedSce
   const instances = instanceInputs ? scene.instances.map((inst, i) => (instanceInputs[i] == null ? inst : instanceUpdate(inst, instanceInputs[i], i))) : scene.instances;
   const next: NormalizedScene = { ...scene, meshes, instances };
   const infoOffset = (texture: number, srgb: boolean): number => prepared.atlas.infoOffset(texture, srgb);
-  const flat = flattenPrimitives(next, infoOffset, prepared.instancing, prepared.bottomLevels ? bottomLevelRoots(prepared.bottomLevels) : null);
+  const meshesMoved = meshInputs?.some((u) => u != null) ?? false;
+  // Only instances moved and the tree is refitted: their records alone are rewritten.
+  let topLevel: TopLevelUpdate;
+  if (!meshesMoved && bvh === 'refit') {
+    const moved: number[] = [];
+    instanceInputs?.forEach((u, i) => {
+      if (u != null) moved.push(i);
+    });
+    topLevel = { patch: patchTopLevel(next, prepared, moved) };
+  } else {
+    topLevel = { flat: flattenPrimitives(next, infoOffset, prepared.instancing, prepared.bottomLevels ? bottomLevelRoots(prepared.bottomLevels) : null) };
+  }
   let lights: LightTable | null = null;
   if (prepared.lightCount > 0) {
     lights = buildLightTable(next, infoOffset);
@@ -176,7 +197,8 @@ export function packGeometryUpdate(scene: NormalizedScene, prepared: PreparedSce
   }
   return {
     scene: next,
-    flat,
+    topLevel,
+    bounds: topLevel.flat ? topLevel.flat.bounds : topLevel.patch.bounds,
     bottomLevels,
     bvh,
     vertexStreams: meshInputs ? packVertexStreams(meshes).vertexStreams : null,

@@ -129,8 +129,14 @@ export function bvhNodeCapacity(plan: InstancingPlan): number {
   return 2 * plan.topPrimitiveCount - 1 + 2 * plan.bottomLevelTriangles - plan.bottomLevels.length;
 }
 
-/** Object-space box of a mesh's positions (min xyz, max xyz). */
+// Boxes per positions array: every flatten and every patch of moved placements needs them, and a
+// geometry update that moves a mesh gives it a new positions array.
+const boxesOfPositions = new WeakMap<object, Float64Array>();
+
+/** Object-space box of a mesh's positions (min xyz, max xyz); read only (it is shared). */
 export function meshBounds(mesh: NormalizedMesh): Float64Array {
+  const cached = boxesOfPositions.get(mesh.positions);
+  if (cached) return cached;
   const b = new Float64Array([Infinity, Infinity, Infinity, -Infinity, -Infinity, -Infinity]);
   const p = mesh.positions;
   for (let v = 0; v < mesh.vertexCount; v++) {
@@ -140,6 +146,7 @@ export function meshBounds(mesh: NormalizedMesh): Float64Array {
       if (x > b[3 + c]!) b[3 + c] = x;
     }
   }
+  boxesOfPositions.set(mesh.positions, b);
   return b;
 }
 

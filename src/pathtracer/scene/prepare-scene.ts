@@ -4,7 +4,7 @@ import { Vec4Heap } from '../../gpu-layout/vec4-heap.ts';
 import { buildTextureAtlas, type TextureAtlas } from '../../materials/textures/texture-atlas.ts';
 import type { AtlasLimits } from '../../materials/textures/atlas-packer.ts';
 import type { NormalizedScene } from '../../scene/normalize-scene.ts';
-import { flattenPrimitives, type FlatPrimitives } from './flatten-primitives.ts';
+import { flattenPrimitives, type SceneBounds } from './flatten-primitives.ts';
 import { bottomLevelRoots, buildBottomLevels, planInstancing, type BottomLevels, type InstancingMode, type InstancingPlan } from './instancing.ts';
 import { buildLightTable } from './light-table.ts';
 import { packInstances } from './pack-instances.ts';
@@ -31,6 +31,8 @@ export interface PreparedScene {
   /** Which placements go through bottom-level trees, and the trees (null when none do). */
   instancing: InstancingPlan;
   bottomLevels: BottomLevels | null;
+  /** World box of each instance's geometry (6 per instance), what a patch of moved instances keeps of the rest. */
+  instanceBounds: Float64Array;
   /** The placements' transform records, for primitive slots from `base` (rewritten when placements move). */
   placementTransforms: { base: number; records: ArrayBuffer };
   bvh: { nodeCount: number; depth: number; sahCost: number; buildTimeMs: number };
@@ -102,7 +104,7 @@ export async function prepareGeometry(
   const cpuBvh = gpu ? null : await buildBvhAsync(flat.boundsTriangles, options.signal ? { signal: options.signal } : {});
   const bvh = cpuBvh ?? gpuBuildPending(flat.count);
   const nodes = cpuBvh ? packWavefrontBvhNodes(cpuBvh) : new ArrayBuffer(0);
-  const { sceneCenter, sceneRadius } = sceneExtent(scene, flat);
+  const { sceneCenter, sceneRadius } = sceneExtent(scene, flat.bounds);
   return {
     primitives: packPrimitives(flat, bvh.triangleOrder),
     bvhNodes: nodes,
@@ -120,6 +122,7 @@ export async function prepareGeometry(
     triangleCount: scene.triangleCount,
     instancing: plan,
     bottomLevels,
+    instanceBounds: flat.instanceBounds,
     placementTransforms: { base: flat.placementTransformBase, records: flat.placementTransforms },
     bvh: { nodeCount: bvh.nodeCount, depth: bvh.depth, sahCost: bvh.sahCost, buildTimeMs: bvh.buildTimeMs },
     acceleration: { mode: gpu ? 'gpu' : 'cpu-upload', order: gpu ? null : bvh.triangleOrder },
@@ -139,8 +142,8 @@ export async function prepareScene(
 }
 
 /** Centre and radius of the scene's bounding sphere (radius 1 for an empty scene). */
-export function sceneExtent(scene: NormalizedScene, flat: FlatPrimitives): { sceneCenter: [number, number, number]; sceneRadius: number } {
-  const { min, max } = flat.bounds;
+export function sceneExtent(scene: NormalizedScene, bounds: SceneBounds): { sceneCenter: [number, number, number]; sceneRadius: number } {
+  const { min, max } = bounds;
   const empty = scene.triangleCount + scene.sceneObjects.length === 0;
   const sceneCenter: [number, number, number] = [0.5 * (min[0] + max[0]), 0.5 * (min[1] + max[1]), 0.5 * (min[2] + max[2])];
   const sceneRadius = empty ? 1 : Math.max(1e-6, 0.5 * Math.hypot(max[0] - min[0], max[1] - min[1], max[2] - min[2]));

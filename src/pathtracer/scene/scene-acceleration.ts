@@ -18,8 +18,9 @@ import { bvhParentLinks, packPrimitives, packWavefrontBvhNodes } from '../../acc
 import { BufferUsage } from '../../gpu/webgpu-constants.ts';
 import { bvhNodeLayout, primitiveLayout } from '../../gpu-layout/records.ts';
 import type { GpuBufferSet } from '../gpu-buffers.ts';
-import type { FlatPrimitives } from './flatten-primitives.ts';
+import type { TopLevelUpdate } from './geometry-update.ts';
 import type { AccelerationBuildMode, PreparedScene } from './prepare-scene.ts';
+import { applyTopLevelPatch } from './top-level-patch.ts';
 
 export type BvhUpdateMode = 'refit' | 'rebuild';
 
@@ -92,37 +93,46 @@ export class SceneAcceleration {
     this.prepared.bvh = { nodeCount: result.nodeCount, depth: result.depth, sahCost: result.sahCost, buildTimeMs: result.buildTimeMs };
   }
 
-  /**
-   * The scene's primitives moved (same primitives, same count): brings the tree along. A refit
-   * keeps the topology and recomputes every box on the GPU; a rebuild builds a fresh tree in this
-   * scene's mode. Returns the wall time of the BVH work, ms.
-   */
   private writePlacementTransforms(records: ArrayBuffer): void {
     if (records.byteLength === 0) return;
     this.device.queue.writeBuffer(this.buffers.primitives, this.prepared.placementTransforms.base * primitiveLayout.size, records);
   }
 
-  async update(flat: FlatPrimitives, how: BvhUpdateMode, bottomLevelsMoved = false): Promise<number> {
+  /**
+   * The scene's primitives moved (same primitives, same count): brings the tree along. A refit
+   * keeps the topology and recomputes every box on the GPU; a rebuild builds a fresh tree in this
+   * scene's mode. A patch (only instances moved) rewrites just their records. Returns the wall time of the BVH work, ms.
+   */
+  async update(topLevel: TopLevelUpdate, how: BvhUpdateMode, bottomLevelsMoved = false): Promise<number> {
     const started = performance.now();
     const queue = this.device.queue;
     if (bottomLevelsMoved) this.writeBottomLevels();
-    this.prepared.placementTransforms = { base: flat.placementTransformBase, records: flat.placementTransforms };
-    this.writePlacementTransforms(flat.placementTransforms);
-    if (this.mode === 'gpu') {
-      queue.writeBuffer(this.source!, 0, packPrimitives(flat, identity(flat.count)));
-      if (how === 'refit') await this.builder!.refit();
-      else await this.buildOnGpu();
+    // The records as uploaded: to the GPU builder's scene-order source in 'gpu' mode, else in tree order.
+    const target = this.mode === 'gpu' ? this.source! : this.buffers.primitives;
+    if (topLevel.patch) {
+      if (how !== 'refit') throw new RangeError('SceneAcceleration.update: a patch of moved instances is refitted, not rebuilt');
+      const { first, end } = applyTopLevelPatch(this.prepared, topLevel.patch);
+      const size = primitiveLayout.size;
+      if (end > first) queue.writeBuffer(target, first * size, this.prepared.primitives, first * size, (end - first) * size);
+      this.writePlacementTransforms(this.prepared.placementTransforms.records);
+      await this.refit();
       return performance.now() - started;
     }
-    if (how === 'refit') {
-      queue.writeBuffer(this.buffers.primitives, 0, packPrimitives(flat, this.prepared.acceleration.order!));
-      this.refitter ??= await GpuBvhRefitter.create(this.device, { nodes: this.buffers.bvhNodes, parents: this.buffers.bvhParents, primitives: this.buffers.primitives, nodeCount: this.prepared.bvh.nodeCount });
-      await this.refitter.refit();
+    const flat = topLevel.flat;
+    this.prepared.instanceBounds = flat.instanceBounds;
+    this.prepared.placementTransforms = { base: flat.placementTransformBase, records: flat.placementTransforms };
+    this.writePlacementTransforms(flat.placementTransforms);
+    if (this.mode === 'gpu' || how === 'refit') {
+      this.prepared.primitives = packPrimitives(flat, this.prepared.acceleration.order ?? identity(flat.count));
+      queue.writeBuffer(target, 0, this.prepared.primitives);
+      if (how === 'refit') await this.refit();
+      else await this.buildOnGpu();
       return performance.now() - started;
     }
     const bvh = await buildBvhAsync(flat.boundsTriangles);
     const nodes = packWavefrontBvhNodes(bvh);
-    queue.writeBuffer(this.buffers.primitives, 0, packPrimitives(flat, bvh.triangleOrder));
+    this.prepared.primitives = packPrimitives(flat, bvh.triangleOrder);
+    queue.writeBuffer(this.buffers.primitives, 0, this.prepared.primitives);
     queue.writeBuffer(this.buffers.bvhNodes, 0, nodes);
     queue.writeBuffer(this.buffers.bvhParents, 0, bvhParentLinks(nodes, bvh.nodeCount));
     this.prepared.acceleration.order = bvh.triangleOrder;
@@ -132,6 +142,16 @@ export class SceneAcceleration {
     this.refitter = null;
     await queue.onSubmittedWorkDone();
     return performance.now() - started;
+  }
+
+  /** Recomputes every box of the uploaded tree on the GPU (its topology kept). */
+  private async refit(): Promise<void> {
+    if (this.mode === 'gpu') {
+      await this.builder!.refit();
+      return;
+    }
+    this.refitter ??= await GpuBvhRefitter.create(this.device, { nodes: this.buffers.bvhNodes, parents: this.buffers.bvhParents, primitives: this.buffers.primitives, nodeCount: this.prepared.bvh.nodeCount });
+    await this.refitter.refit();
   }
 
   destroy(): void {
