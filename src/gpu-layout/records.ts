@@ -372,9 +372,12 @@ export const rayWorkItemLayout: StructLayout = defineStructLayout('RayWorkItem',
   ['coneSpread', 'f32', 'ray cone spread angle'],
 ]);
 
-/** What closest-hit intersection found for the path's ray: read by material evaluation. */
+/**
+ * What closest-hit intersection found for the path's ray: read by material evaluation. The hit
+ * distance is the ray's `tMax` once traced (closest-hit traversal shortens the segment to the hit),
+ * which keeps the path record at 256 bytes.
+ */
 export const pathHitLayout: StructLayout = defineStructLayout('PathHit', 1, [
-  ['t', 'f32', 'hit distance (-1 for an escaped ray)'],
   ['u', 'f32', 'barycentric of v1'],
   ['v', 'f32', 'barycentric of v2'],
   ['primitive', 'u32', 'the hit record in primitives (BVH order), INDEX_NONE for an escaped ray'],
