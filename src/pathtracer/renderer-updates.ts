@@ -56,7 +56,11 @@ export async function updateGeometry(s: RendererState, update: WavefrontGeometry
   if (packed.bottomLevels) p.bottomLevels = packed.bottomLevels;
   const accelerationMs = await s.acceleration!.update(packed.topLevel, packed.bvh, packed.bottomLevels !== null);
   resetAccumulation(s);
-  return { bvh: packed.bvh, accelerationMs, totalMs: performance.now() - started };
+  const { patch, flat } = packed.topLevel;
+  return {
+    bvh: packed.bvh, accelerationMs, totalMs: performance.now() - started,
+    topLevel: patch ? 'patched' : 'flattened', topLevelRecordsWritten: patch ? patch.slots.length : flat.count,
+  };
 }
 
 export function updateCamera(s: RendererState, camera: WavefrontCameraInput): void {

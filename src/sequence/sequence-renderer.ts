@@ -41,6 +41,13 @@ function sameArray(a: ArrayLike<number> | undefined, b: ArrayLike<number> | unde
   return true;
 }
 
+const IDENTITY = [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1];
+
+/** The same vertex data (what updateGeometry moves). */
+function sameVertices(a: WavefrontMeshInput, b: WavefrontMeshInput): boolean {
+  return sameArray(a.positions, b.positions) && sameArray(a.normals, b.normals) && sameArray(a.tangents, b.tangents);
+}
+
 /** The same mesh but for its vertex positions, normals and tangents (what updateGeometry moves). */
 function sameMeshTopology(a: WavefrontMeshInput, b: WavefrontMeshInput): boolean {
   return (
@@ -80,9 +87,13 @@ export function createSequenceRenderer(options: SequenceRendererOptions, setting
   };
   const update = async (current: WavefrontPathTracingRenderer, previous: WavefrontSceneDescription, scene: WavefrontSceneDescription): Promise<void> => {
     if (sameTopology(previous, scene)) {
+      // Only what changed: a rigid animation moves instances alone, which patches their top-level
+      // records (top-level-patch.ts) instead of refitting every shared mesh's bottom level.
+      const before = previous.meshes ?? [];
+      const previousInstances = previous.instances ?? [];
       await current.updateGeometry({
-        meshes: (scene.meshes ?? []).map((m) => ({ positions: m.positions, ...(m.normals ? { normals: m.normals } : {}), ...(m.tangents ? { tangents: m.tangents } : {}) })),
-        ...(scene.instances ? { instances: scene.instances.map((inst) => ({ transform: inst.transform ?? [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1] })) } : {}),
+        meshes: (scene.meshes ?? []).map((m, i) => (sameVertices(before[i]!, m) ? null : { positions: m.positions, ...(m.normals ? { normals: m.normals } : {}), ...(m.tangents ? { tangents: m.tangents } : {}) })),
+        ...(scene.instances ? { instances: scene.instances.map((inst, i) => (sameArray(previousInstances[i]?.transform ?? IDENTITY, inst.transform ?? IDENTITY) ? null : { transform: inst.transform ?? IDENTITY })) } : {}),
         bvh: settings.bvh ?? 'refit',
       });
       if (scene.camera) current.updateCamera(scene.camera);

@@ -114,6 +114,11 @@ for (const { instancing, accelerationBuildMode, bvh, meshes } of moves) {
         bvh,
       });
       assert.equal(stats.bvh, bvh);
+      assert.equal(stats.topLevel, bvh === 'rebuild' || meshes ? 'flattened' : 'patched');
+      // Patched: one record per placement given a transform ('always'), each of their triangles ('off').
+      const instances = moved.instances.length;
+      if (stats.topLevel === 'patched' && instancing === 'always') assert.equal(stats.topLevelRecordsWritten, instances);
+      if (stats.topLevel === 'patched' && instancing === 'off') assert.ok(stats.topLevelRecordsWritten > instances, `${stats.topLevelRecordsWritten} records`);
       await renderer.renderFrame();
       await fresh.renderFrame();
       const updated = (await renderer.readRadiance()).data;

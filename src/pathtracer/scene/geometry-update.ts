@@ -51,6 +51,13 @@ export interface WavefrontGeometryUpdateStats {
   accelerationMs: number;
   /** Wall time of the whole update (validation, packing, uploads, BVH), ms. */
   totalMs: number;
+  /**
+   * How the top level followed: 'patched' (only instances moved and the tree was refitted: the
+   * moved instances' records alone were rewritten) or 'flattened' (moved meshes, or a rebuild).
+   */
+  topLevel: 'patched' | 'flattened';
+  /** Top-level records written: the moved instances' under 'patched', every record under 'flattened'. */
+  topLevelRecordsWritten: number;
 }
 
 /**
