@@ -19,3 +19,15 @@ export function meanDifferenceZ(a: Float32Array, b: Float32Array, options: { ide
     return mean / Math.sqrt(variance / n);
   });
 }
+
+/** Relative L1 distance of two images' colour channels (RGBA floats; alpha ignored): sum |a - b| / sum |a|. */
+export function relativeL1(a: Float32Array, b: Float32Array): number {
+  let sum = 0, diff = 0;
+  for (let i = 0; i < a.length; i += 4) {
+    for (let c = 0; c < 3; c++) {
+      sum += Math.abs(a[i + c]!);
+      diff += Math.abs(a[i + c]! - b[i + c]!);
+    }
+  }
+  return diff / sum;
+}

@@ -9,7 +9,7 @@ import assert from 'node:assert/strict';
 import { createWavefrontPathTracingComputeRenderer } from '../../src/pathtracer/index.ts';
 import type { InstancingMode, WavefrontPathTracingOptions, WavefrontRendererSnapshot } from '../../src/index.ts';
 import { testDevice } from '../helpers/gpu.ts';
-import { meanDifferenceZ } from '../helpers/image-stats.ts';
+import { meanDifferenceZ, relativeL1 } from '../helpers/image-stats.ts';
 import { GpuRendererError } from '../../src/errors/gpu-renderer-error.ts';
 import { checkBufferLimits, planBuffers } from '../../src/pathtracer/buffer-plan.ts';
 import { createWavefrontPathTracingComputeConfig } from '../../src/pathtracer/config.ts';
@@ -58,18 +58,6 @@ test('placements through bottom levels render the flattened image: same seed to 
   const z = meanDifferenceZ(flat.image, other.image);
   assert.ok(z.every((v) => Math.abs(v) < 4), `mean difference z = ${z.map((v) => v.toFixed(2)).join(', ')}`);
 });
-
-/** Relative L1 distance of two images' colour channels. */
-function relativeL1(a: Float32Array, b: Float32Array): number {
-  let sum = 0, diff = 0;
-  for (let i = 0; i < a.length; i += 4) {
-    for (let c = 0; c < 3; c++) {
-      sum += Math.abs(a[i + c]!);
-      diff += Math.abs(a[i + c]! - b[i + c]!);
-    }
-  }
-  return diff / sum;
-}
 
 /** The scene moved: every placement turned and shifted, and (`meshes`) the shared sphere mesh inflated by 10 %. */
 function movedScene(meshes = true): ReturnType<typeof transformsScene> {

@@ -8,6 +8,7 @@ import { createWavefrontPathTracingComputeRenderer } from '../../src/pathtracer/
 import { createSequenceRenderer } from '../../src/sequence/sequence-renderer.ts';
 import type { WavefrontGeometryUpdateStats, WavefrontSceneDescription } from '../../src/index.ts';
 import { testDevice } from '../helpers/gpu.ts';
+import { relativeL1 } from '../helpers/image-stats.ts';
 import { icosphere } from '../helpers/meshes.ts';
 import { trs } from '../pathtracer/instancing-scenes.ts';
 
@@ -32,17 +33,6 @@ function frame(t: number, sphere: { positions: number[]; indices: number[] }): W
     camera: { position: [0, 2.2, 4], target: [0, 0.4, 0], up: [0, 1, 0], fovYDegrees: 45 },
     environment: { color: [0.4, 0.45, 0.5] },
   };
-}
-
-function relativeL1(a: Float32Array, b: Float32Array): number {
-  let sum = 0, diff = 0;
-  for (let i = 0; i < a.length; i += 4) {
-    for (let c = 0; c < 3; c++) {
-      sum += Math.abs(a[i + c]!);
-      diff += Math.abs(a[i + c]! - b[i + c]!);
-    }
-  }
-  return diff / sum;
 }
 
 test('a rigid animation patches the moved placements; a deforming mesh flattens; both render the frame', async () => {
