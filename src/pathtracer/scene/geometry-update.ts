@@ -12,13 +12,13 @@ import { fieldOf } from '../../gpu-layout/struct-layout.ts';
 import { affineFromColumnMajor, type NormalizedInstance } from '../../scene/instance.ts';
 import { normalizeWavefrontMesh, type NormalizedMesh } from '../../scene/mesh.ts';
 import type { NormalizedScene } from '../../scene/normalize-scene.ts';
-import { flattenPrimitives, type FlatPrimitives, type SceneBounds } from './flatten-primitives.ts';
+import { flattenPrimitives, type SceneBounds } from './flatten-primitives.ts';
 import { bottomLevelRoots, refitBottomLevels, type BottomLevels } from './instancing.ts';
 import { buildLightTable, type LightTable } from './light-table.ts';
 import { packVertexStreams } from './pack-vertices.ts';
 import type { PreparedScene } from './prepare-scene.ts';
 import type { BvhUpdateMode } from './scene-acceleration.ts';
-import { patchTopLevel, type TopLevelPatch } from './top-level-patch.ts';
+import { patchTopLevel, type TopLevelUpdate } from './top-level-patch.ts';
 
 /** New vertex data of one mesh: positions, and normals / tangents where the mesh has them (omitted: kept). */
 export interface WavefrontMeshGeometryUpdate {
@@ -59,12 +59,6 @@ export interface WavefrontGeometryUpdateStats {
   /** Top-level records written: the moved instances' under 'patched', every record under 'flattened'. */
   topLevelRecordsWritten: number;
 }
-
-/**
- * The top level after an update: the whole scene flattened again (moved meshes, a rebuild), or a
- * patch of the records of the moved instances (top-level-patch.ts).
- */
-export type TopLevelUpdate = { flat: FlatPrimitives; patch?: never } | { patch: TopLevelPatch; flat?: never };
 
 /** What an update writes, all packed before the first write. */
 export interface PackedGeometryUpdate {

@@ -18,9 +18,8 @@ import { bvhParentLinks, packPrimitives, packWavefrontBvhNodes } from '../../acc
 import { BufferUsage } from '../../gpu/webgpu-constants.ts';
 import { bvhNodeLayout, primitiveLayout } from '../../gpu-layout/records.ts';
 import type { GpuBufferSet } from '../gpu-buffers.ts';
-import type { TopLevelUpdate } from './geometry-update.ts';
 import type { AccelerationBuildMode, PreparedScene } from './prepare-scene.ts';
-import { applyTopLevelPatch } from './top-level-patch.ts';
+import { applyTopLevelPatch, type TopLevelUpdate } from './top-level-patch.ts';
 
 export type BvhUpdateMode = 'refit' | 'rebuild';
 

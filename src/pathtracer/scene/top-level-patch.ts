@@ -11,9 +11,15 @@ import { PRIMITIVE_FLAG_MIRRORED, PRIMITIVE_FLAG_SINGLE_SIDED, PRIMITIVE_SHAPE_I
 import { primitiveLayout } from '../../gpu-layout/records.ts';
 import { PRIMITIVE_FIELD_WORDS, PRIMITIVE_WORDS, writePrimitiveGeometry } from '../../accel/triangle-packing.ts';
 import type { NormalizedScene } from '../../scene/normalize-scene.ts';
-import { instanceMaterial, placeTriangle, sceneBounds, sidednessBits, topLevelFirstRecords, type SceneBounds } from './flatten-primitives.ts';
+import { instanceMaterial, placeTriangle, sceneBounds, sidednessBits, topLevelFirstRecords, type FlatPrimitives, type SceneBounds } from './flatten-primitives.ts';
 import { bottomLevelRoots, meshBounds, placementBounds, placementTransformRecords } from './instancing.ts';
 import type { PreparedScene } from './prepare-scene.ts';
+
+/**
+ * The top level after a geometry update: the whole scene flattened again (moved meshes, a
+ * rebuild), or a patch of the records of the moved instances.
+ */
+export type TopLevelUpdate = { flat: FlatPrimitives; patch?: never } | { patch: TopLevelPatch; flat?: never };
 
 /** The rewritten records of the moved instances, packed before anything is written. */
 export interface TopLevelPatch {
