@@ -32,7 +32,8 @@ import type { WavefrontPathTracingRenderer } from '../src/pathtracer/types.ts';
 import { srgbToLinear } from '../src/color/srgb.ts';
 import type { WavefrontImageInput, WavefrontMaterialInput, WavefrontSceneDescription, WavefrontTextureRefInput } from '../src/scene/types.ts';
 import { terrainGlb, texturedRoomDocument } from './gltf-assets.ts';
-import { cpuMark, isCpuAdapter, otherLoadCores, workerCpuSeconds } from './cpu-clock.ts';
+import { isCpuAdapter } from './cpu-clock.ts';
+import { timedRounds } from './timed-rounds.ts';
 
 export interface Spread {
   median: number;
@@ -221,24 +222,9 @@ async function measureTextures(log: (line: string) => void): Promise<{ rows: Glt
       renderers.push(renderer);
       await renderer.renderFrame({ samplesPerPixel: 1 }); // warm-up: pipelines compile on first use
     }
-    const samples = variants.map(() => [] as number[]);
-    const rays = variants.map(() => [] as number[]);
-    const perCpu = variants.map(() => [] as number[]);
-    const other = variants.map(() => [] as number[]);
-    for (let r = 0; r < rounds; r++) {
-      for (let k = 0; k < renderers.length; k++) {
-        const from = cpuMark();
-        const stats = await renderers[k]!.renderFrame({ samplesPerPixel: spp });
-        const to = cpuMark();
-        const seconds = (to.wallMs - from.wallMs) / 1000;
-        samples[k]!.push((size * size * spp) / seconds);
-        rays[k]!.push(stats.rays.total / seconds);
-        perCpu[k]!.push((size * size * spp) / workerCpuSeconds(from, to));
-        const load = otherLoadCores(from, to);
-        if (load !== null) other[k]!.push(load);
-      }
+    const { samples, rays, samplesPerWorkerCpuSecond: perCpu, otherLoadCores: other } = await timedRounds(renderers, size * size, spp, rounds, (r, samples) => {
       log(`  round ${r + 1}/${rounds}: ${variants.map((v, k) => `${v.scene} ${(samples[k]![r]! / 1e6).toFixed(3)} M samples/s`).join(', ')}`);
-    }
+    });
     const adapter = renderers[0]!.getSnapshot().adapter;
     const cpu = isCpuAdapter(adapter);
     const rows = variants.map((v, k): GltfRenderRow => {

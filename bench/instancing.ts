@@ -51,7 +51,8 @@ import { prepareGeometry, prepareMaterials, type PreparedMaterials, type Prepare
 import type { WavefrontInstancingStats, WavefrontPathTracingOptions, WavefrontPathTracingRenderer } from '../src/pathtracer/types.ts';
 import { normalizeWavefrontScene, type NormalizedScene } from '../src/scene/normalize-scene.ts';
 import type { WavefrontCameraInput, WavefrontSceneDescription } from '../src/scene/types.ts';
-import { cpuMark, isCpuAdapter, otherLoadCores, workerCpuSeconds } from './cpu-clock.ts';
+import { isCpuAdapter } from './cpu-clock.ts';
+import { timedRounds } from './timed-rounds.ts';
 import { forestGlb, TREES, type ForestAsset } from './instancing-assets.ts';
 import { icosphere } from './pathtracer.ts';
 import { envInteger, spread, type Spread } from './gltf.ts';
@@ -284,25 +285,9 @@ async function createRenderers(device: GPUDevice, description: WavefrontSceneDes
 
 /** Timed frames of each renderer in turn, `rounds` times. */
 async function renderRounds(live: LiveRenderers, variants: Variant[], size: number, spp: number, rounds: number, log: (line: string) => void): Promise<{ rows: InstancingRenderRow[]; samples: number[][] }> {
-  const n = variants.length;
-  const samples = variants.map(() => [] as number[]);
-  const rays = variants.map(() => [] as number[]);
-  const perCpu = variants.map(() => [] as number[]);
-  const other = variants.map(() => [] as number[]);
-  for (let r = 0; r < rounds; r++) {
-    for (let k = 0; k < n; k++) {
-      const from = cpuMark();
-      const stats = await live.renderers[k]!.renderFrame({ samplesPerPixel: spp });
-      const to = cpuMark();
-      const seconds = (to.wallMs - from.wallMs) / 1000;
-      samples[k]!.push((size * size * spp) / seconds);
-      rays[k]!.push(stats.rays.total / seconds);
-      perCpu[k]!.push((size * size * spp) / workerCpuSeconds(from, to));
-      const load = otherLoadCores(from, to);
-      if (load !== null) other[k]!.push(load);
-    }
+  const { samples, rays, samplesPerWorkerCpuSecond: perCpu, otherLoadCores: other } = await timedRounds(live.renderers, size * size, spp, rounds, (r, samples) => {
     log(`    round ${r + 1}/${rounds}: ${variants.map((v, k) => `'${v.instancing}'${v.accelerationBuildMode === 'gpu' ? ' (GPU TLAS)' : ''} ${(samples[k]![r]! / 1e6).toFixed(3)}`).join(', ')} M samples/s`);
-  }
+  });
   const cpu = isCpuAdapter(live.renderers[0]!.getSnapshot().adapter);
   const rows = variants.map((v, k): InstancingRenderRow => {
     const s = live.renderers[k]!.getSnapshot();
