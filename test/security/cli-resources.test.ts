@@ -2,25 +2,12 @@
 // for the origins --allow-origin names (the renderer is not started for a refused scene).
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { spawn } from 'node:child_process';
 import { writeFileSync } from 'node:fs';
 import { join } from 'node:path';
-import { fileURLToPath } from 'node:url';
 import { parseRenderArgs } from '../../src/cli/args.ts';
 import { loadScene } from '../../src/cli/render-command.ts';
+import { runCli } from '../helpers/cli-process.ts';
 import { assetFolder, recordingServer, refused, TRIANGLE, triangleGltf } from './helpers.ts';
-
-const cli = fileURLToPath(new URL('../../src/cli/main.ts', import.meta.url));
-
-function run(args: string[]): Promise<{ code: number | null; stderr: string }> {
-  return new Promise((resolve, reject) => {
-    const child = spawn(process.execPath, [cli, ...args], { stdio: ['ignore', 'ignore', 'pipe'] });
-    let stderr = '';
-    child.stderr.setEncoding('utf8').on('data', (d: string) => (stderr += d));
-    child.on('error', reject);
-    child.on('close', (code) => resolve({ code, stderr }));
-  });
-}
 
 test('--allow-origin: repeatable, comma separated, origins only', () => {
   const command = parseRenderArgs(['scene.json', '--allow-origin', 'https://a.example, http://127.0.0.1:8080', '--allow-origin=https://b.example:8443']);
@@ -40,7 +27,7 @@ test("a scene's remote glTF is refused without --allow-origin and loaded with it
   try {
     const scene = join(f.asset, 'scene.json');
     writeFileSync(scene, JSON.stringify({ gltf: [{ src: `${server.origin}/tri.gltf` }] }));
-    const r = await run(['render', scene, '--width', '4', '--height', '4', '--spp', '1', '--out', join(f.root, 'out.png')]);
+    const r = await runCli(['render', scene, '--width', '4', '--height', '4', '--spp', '1', '--out', join(f.root, 'out.png')]);
     assert.equal(r.code, 1);
     assert.match(r.stderr, /^error \[INVALID_SCENE_FILE\] gltf\[0\]\.src: .*allowedOrigins; CLI --allow-origin/);
     assert.deepEqual(server.requests, []);
