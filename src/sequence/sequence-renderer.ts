@@ -43,9 +43,19 @@ function sameArray(a: ArrayLike<number> | undefined, b: ArrayLike<number> | unde
 
 const IDENTITY = [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1];
 
+/**
+ * Whether `next` is known to hold what `previous` held: a different array with the same values
+ * (what a new pose gives an unmoved mesh). The same array object is not known to be unchanged:
+ * it may have been written in place since.
+ */
+function knownUnchanged(previous: ArrayLike<number> | undefined, next: ArrayLike<number> | undefined): boolean {
+  if (previous === undefined || next === undefined) return previous === next;
+  return previous !== next && sameArray(previous, next);
+}
+
 /** The same vertex data (what updateGeometry moves). */
 function sameVertices(a: WavefrontMeshInput, b: WavefrontMeshInput): boolean {
-  return sameArray(a.positions, b.positions) && sameArray(a.normals, b.normals) && sameArray(a.tangents, b.tangents);
+  return knownUnchanged(a.positions, b.positions) && knownUnchanged(a.normals, b.normals) && knownUnchanged(a.tangents, b.tangents);
 }
 
 /** The same mesh but for its vertex positions, normals and tangents (what updateGeometry moves). */
@@ -93,7 +103,7 @@ export function createSequenceRenderer(options: SequenceRendererOptions, setting
       const previousInstances = previous.instances ?? [];
       await current.updateGeometry({
         meshes: (scene.meshes ?? []).map((m, i) => (sameVertices(before[i]!, m) ? null : { positions: m.positions, ...(m.normals ? { normals: m.normals } : {}), ...(m.tangents ? { tangents: m.tangents } : {}) })),
-        ...(scene.instances ? { instances: scene.instances.map((inst, i) => (sameArray(previousInstances[i]?.transform ?? IDENTITY, inst.transform ?? IDENTITY) ? null : { transform: inst.transform ?? IDENTITY })) } : {}),
+        ...(scene.instances ? { instances: scene.instances.map((inst, i) => ((inst.transform === undefined ? previousInstances[i]?.transform === undefined : knownUnchanged(previousInstances[i]?.transform ?? IDENTITY, inst.transform)) ? null : { transform: inst.transform ?? IDENTITY })) } : {}),
         bvh: settings.bvh ?? 'refit',
       });
       if (scene.camera) current.updateCamera(scene.camera);

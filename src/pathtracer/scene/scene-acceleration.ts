@@ -100,7 +100,8 @@ export class SceneAcceleration {
   /**
    * The scene's primitives moved (same primitives, same count): brings the tree along. A refit
    * keeps the topology and recomputes every box on the GPU; a rebuild builds a fresh tree in this
-   * scene's mode. A patch (only instances moved) rewrites just their records. Returns the wall time of the BVH work, ms.
+   * scene's mode. A patch (only instances moved) rewrites just their records. Returns the wall
+   * time of the BVH work, ms.
    */
   async update(topLevel: TopLevelUpdate, how: BvhUpdateMode, bottomLevelsMoved = false): Promise<number> {
     const started = performance.now();
