@@ -33,14 +33,9 @@ import { srgbToLinear } from '../src/color/srgb.ts';
 import type { WavefrontImageInput, WavefrontMaterialInput, WavefrontSceneDescription, WavefrontTextureRefInput } from '../src/scene/types.ts';
 import { terrainGlb, texturedRoomDocument } from './gltf-assets.ts';
 import { isCpuAdapter } from './cpu-clock.ts';
-import { timedRounds } from './timed-rounds.ts';
+import { roundFigures, spread, timedRounds, type RoundRow, type Spread } from './timed-rounds.ts';
 
-export interface Spread {
-  median: number;
-  min: number;
-  max: number;
-  all: number[];
-}
+export { spread, type Spread } from './timed-rounds.ts';
 
 export interface GltfLoadResult {
   triangles: number;
@@ -59,19 +54,11 @@ export interface GltfLoadResult {
   sahCost: number;
 }
 
-export interface GltfRenderRow {
+export interface GltfRenderRow extends RoundRow {
   scene: string;
   triangles: number;
   textures: number;
   textureBytes: number;
-  resolution: string;
-  spp: number;
-  samplesPerSecond: Spread;
-  raysPerSecond: Spread;
-  /** Samples per CPU-second of the threads other than the main one (CPU adapters), or null. */
-  samplesPerWorkerCpuSecond: Spread | null;
-  /** Cores' worth of other processes' CPU during the timed frames: median, max. */
-  otherLoadCores: { median: number; max: number } | null;
 }
 
 export interface GltfBenchResult {
@@ -87,12 +74,6 @@ export interface GltfBenchResult {
     texturedOverAveraged: { samplesPerSecond: number; raysPerSecond: number; perRoundSamplesPerSecond: number[] };
   };
   totalSeconds: number;
-}
-
-export function spread(values: number[]): Spread {
-  const s = [...values].sort((a, b) => a - b);
-  const m = s.length >> 1;
-  return { median: s.length % 2 ? s[m]! : (s[m - 1]! + s[m]!) / 2, min: s[0]!, max: s[s.length - 1]!, all: values };
 }
 
 export function envInteger(name: string, fallback: number): number {
@@ -222,7 +203,7 @@ async function measureTextures(log: (line: string) => void): Promise<{ rows: Glt
       renderers.push(renderer);
       await renderer.renderFrame({ samplesPerPixel: 1 }); // warm-up: pipelines compile on first use
     }
-    const { samples, rays, samplesPerWorkerCpuSecond: perCpu, otherLoadCores: other } = await timedRounds(renderers, size * size, spp, rounds, (r, samples) => {
+    const figures = await timedRounds(renderers, size * size, spp, rounds, (r, samples) => {
       log(`  round ${r + 1}/${rounds}: ${variants.map((v, k) => `${v.scene} ${(samples[k]![r]! / 1e6).toFixed(3)} M samples/s`).join(', ')}`);
     });
     const adapter = renderers[0]!.getSnapshot().adapter;
@@ -231,14 +212,13 @@ async function measureTextures(log: (line: string) => void): Promise<{ rows: Glt
       const snapshot = renderers[k]!.getSnapshot();
       return {
         scene: v.scene, triangles: snapshot.triangleCount, textures: snapshot.textureCount, textureBytes: snapshot.memory.textureBytes,
-        resolution: `${size}x${size}`, spp, samplesPerSecond: spread(samples[k]!), raysPerSecond: spread(rays[k]!), samplesPerWorkerCpuSecond: cpu ? spread(perCpu[k]!) : null,
-        otherLoadCores: other[k]!.length ? { median: spread(other[k]!).median, max: Math.max(...other[k]!) } : null,
+        ...roundFigures(figures, k, cpu, size, spp),
       };
     });
     const ratios = {
       samplesPerSecond: rows[0]!.samplesPerSecond.median / rows[1]!.samplesPerSecond.median,
       raysPerSecond: rows[0]!.raysPerSecond.median / rows[1]!.raysPerSecond.median,
-      perRoundSamplesPerSecond: samples[0]!.map((v, r) => v / samples[1]![r]!),
+      perRoundSamplesPerSecond: figures.samples[0]!.map((v, r) => v / figures.samples[1]![r]!),
     };
     return { rows, rounds, ratios, adapter };
   } finally {

@@ -52,7 +52,7 @@ import type { WavefrontInstancingStats, WavefrontPathTracingOptions, WavefrontPa
 import { normalizeWavefrontScene, type NormalizedScene } from '../src/scene/normalize-scene.ts';
 import type { WavefrontCameraInput, WavefrontSceneDescription } from '../src/scene/types.ts';
 import { isCpuAdapter } from './cpu-clock.ts';
-import { timedRounds } from './timed-rounds.ts';
+import { roundFigures, timedRounds, type RoundRow } from './timed-rounds.ts';
 import { forestGlb, TREES, type ForestAsset } from './instancing-assets.ts';
 import { icosphere } from './pathtracer.ts';
 import { envInteger, spread, type Spread } from './gltf.ts';
@@ -61,7 +61,7 @@ export type { Spread } from './gltf.ts';
 
 type BuildMode = 'cpu-upload' | 'gpu';
 
-export interface InstancingRenderRow {
+export interface InstancingRenderRow extends RoundRow {
   scene: string;
   instancing: InstancingMode;
   accelerationBuildMode: BuildMode;
@@ -72,12 +72,6 @@ export interface InstancingRenderRow {
   sceneBytes: number;
   bvhNodes: number;
   bvhDepth: number;
-  resolution: string;
-  spp: number;
-  samplesPerSecond: Spread;
-  raysPerSecond: Spread;
-  samplesPerWorkerCpuSecond: Spread | null;
-  otherLoadCores: { median: number; max: number } | null;
 }
 
 export interface PrepareTimes {
@@ -285,7 +279,7 @@ async function createRenderers(device: GPUDevice, description: WavefrontSceneDes
 
 /** Timed frames of each renderer in turn, `rounds` times. */
 async function renderRounds(live: LiveRenderers, variants: Variant[], size: number, spp: number, rounds: number, log: (line: string) => void): Promise<{ rows: InstancingRenderRow[]; samples: number[][] }> {
-  const { samples, rays, samplesPerWorkerCpuSecond: perCpu, otherLoadCores: other } = await timedRounds(live.renderers, size * size, spp, rounds, (r, samples) => {
+  const figures = await timedRounds(live.renderers, size * size, spp, rounds, (r, samples) => {
     log(`    round ${r + 1}/${rounds}: ${variants.map((v, k) => `'${v.instancing}'${v.accelerationBuildMode === 'gpu' ? ' (GPU TLAS)' : ''} ${(samples[k]![r]! / 1e6).toFixed(3)}`).join(', ')} M samples/s`);
   });
   const cpu = isCpuAdapter(live.renderers[0]!.getSnapshot().adapter);
@@ -293,12 +287,11 @@ async function renderRounds(live: LiveRenderers, variants: Variant[], size: numb
     const s = live.renderers[k]!.getSnapshot();
     return {
       scene: v.scene, instancing: v.instancing, accelerationBuildMode: v.accelerationBuildMode, createMs: live.createMs[k]!, stats: s.instancing,
-      triangles: s.triangleCount, sceneBytes: s.memory.sceneBytes, bvhNodes: s.bvhNodeCount, bvhDepth: s.bvhDepth, resolution: `${size}x${size}`, spp,
-      samplesPerSecond: spread(samples[k]!), raysPerSecond: spread(rays[k]!), samplesPerWorkerCpuSecond: cpu ? spread(perCpu[k]!) : null,
-      otherLoadCores: other[k]!.length ? { median: spread(other[k]!).median, max: Math.max(...other[k]!) } : null,
+      triangles: s.triangleCount, sceneBytes: s.memory.sceneBytes, bvhNodes: s.bvhNodeCount, bvhDepth: s.bvhDepth,
+      ...roundFigures(figures, k, cpu, size, spp),
     };
   });
-  return { rows, samples };
+  return { rows, samples: figures.samples };
 }
 
 /**

@@ -6,6 +6,19 @@
  */
 import { cpuMark, otherLoadCores, workerCpuSeconds } from './cpu-clock.ts';
 
+export interface Spread {
+  median: number;
+  min: number;
+  max: number;
+  all: number[];
+}
+
+export function spread(values: number[]): Spread {
+  const s = [...values].sort((a, b) => a - b);
+  const m = s.length >> 1;
+  return { median: s.length % 2 ? s[m]! : (s[m - 1]! + s[m]!) / 2, min: s[0]!, max: s[s.length - 1]!, all: values };
+}
+
 interface TimedRenderer {
   renderFrame(options: { samplesPerPixel: number }): Promise<{ rays: { total: number } }>;
 }
@@ -37,4 +50,28 @@ export async function timedRounds(renderers: readonly TimedRenderer[], pixels: n
     onRound(r, figures.samples);
   }
   return figures;
+}
+
+/** The throughput columns of a benchmark row, from the rounds of renderer `k`. */
+export interface RoundRow {
+  resolution: string;
+  spp: number;
+  samplesPerSecond: Spread;
+  raysPerSecond: Spread;
+  /** Samples per CPU-second of the threads other than the main one (CPU adapters), or null. */
+  samplesPerWorkerCpuSecond: Spread | null;
+  /** Cores' worth of other processes' CPU during the timed frames: median, max. */
+  otherLoadCores: { median: number; max: number } | null;
+}
+
+export function roundFigures(figures: RoundFigures, k: number, cpuAdapter: boolean, size: number, spp: number): RoundRow {
+  const other = figures.otherLoadCores[k]!;
+  return {
+    resolution: `${size}x${size}`,
+    spp,
+    samplesPerSecond: spread(figures.samples[k]!),
+    raysPerSecond: spread(figures.rays[k]!),
+    samplesPerWorkerCpuSecond: cpuAdapter ? spread(figures.samplesPerWorkerCpuSecond[k]!) : null,
+    otherLoadCores: other.length ? { median: spread(other).median, max: Math.max(...other) } : null,
+  };
 }
